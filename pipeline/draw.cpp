@@ -1,0 +1,46 @@
+#include "pipeline/draw.h"
+
+#include <string>
+
+namespace rast {
+
+PixelRect drawableRect(const Framebuffer& fb, const PipelineState& state) {
+  const Viewport& vp = state.viewport;
+  PixelRect rect = PixelRect{vp.x, vp.y, vp.x + vp.width, vp.y + vp.height}.intersect(
+      PixelRect{0, 0, fb.width(), fb.height()});
+  if (state.scissor) rect = rect.intersect(*state.scissor);
+  return rect;
+}
+
+Status validateDraw(const Framebuffer& fb, const PipelineState& state, size_t vertexCount,
+                    std::span<const uint32_t> indices) {
+  const FixedPointFormat f = state.format;
+  if (!f.valid())
+    return Status::error("fixed-point format " + f.name() +
+                         " is not supported: fraction bits must be 1..8 and integer + fraction "
+                         "bits at most 28");
+  const Viewport& vp = state.viewport;
+  if (vp.width <= 0 || vp.height <= 0)
+    return Status::error("viewport size " + std::to_string(vp.width) + "x" +
+                         std::to_string(vp.height) + " must be positive");
+  const double guard = f.guardBandPixels();
+  if (vp.x < -guard || vp.y < -guard || double(vp.x) + vp.width > guard ||
+      double(vp.y) + vp.height > guard)
+    return Status::error("viewport (" + std::to_string(vp.x) + ", " + std::to_string(vp.y) +
+                         ") " + std::to_string(vp.width) + "x" + std::to_string(vp.height) +
+                         " exceeds the " + f.name() + " fixed-point range of +-" +
+                         std::to_string(int64_t(guard)) + " pixels");
+  if (double(fb.width()) > guard || double(fb.height()) > guard)
+    return Status::error("framebuffer exceeds the " + f.name() + " fixed-point range");
+  if (indices.size() % 3 != 0)
+    return Status::error("index count " + std::to_string(indices.size()) +
+                         " is not a multiple of 3");
+  for (size_t i = 0; i < indices.size(); ++i)
+    if (indices[i] >= vertexCount)
+      return Status::error("index " + std::to_string(i) + " has value " +
+                           std::to_string(indices[i]) + ", out of range for " +
+                           std::to_string(vertexCount) + " vertices");
+  return Status::ok();
+}
+
+}  // namespace rast

@@ -1,0 +1,64 @@
+// A draw call, and the pipeline in order: the table of contents of the whole renderer.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "pipeline/bin.h"
+#include "pipeline/framebuffer.h"
+#include "pipeline/front_end.h"
+#include "pipeline/state.h"
+#include "pipeline/statistics.h"
+#include "pipeline/status.h"
+#include "pipeline/tile_loop.h"
+#include "pipeline/vertex_stage.h"
+
+namespace rast {
+
+// An indexed triangle list: every three indices name one triangle's vertices.
+template <VertexShader VS, PixelShader PS>
+struct DrawCall {
+  std::span<const typename VS::Vertex> vertices;
+  std::span<const uint32_t> indices;
+  const VS& vertexShader;
+  const PS& pixelShader;
+};
+
+// Checks what would make a draw invalid, before anything is drawn.
+Status validateDraw(const Framebuffer& fb, const PipelineState& state, size_t vertexCount,
+                    std::span<const uint32_t> indices);
+
+// Viewport, scissor and framebuffer, intersected: the only pixels a draw may touch.
+PixelRect drawableRect(const Framebuffer& fb, const PipelineState& state);
+
+// Renders the draw into `fb` and adds its counters to `stats`. On an error nothing is drawn.
+template <VertexShader VS, PixelShader PS>
+Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>& call,
+            PipelineStatistics& stats) {
+  constexpr int N = PS::kVaryings;
+  static_assert(N <= VS::kVaryings, "the pixel shader reads more varyings than the vertex shader writes");
+  if (Status s = validateDraw(fb, state, call.vertices.size(), call.indices); !s) return s;
+  PipelineStatistics local;
+
+  TransformedVertices<N> transformed;
+  runVertexStage<VS, N>(call.vertexShader, call.vertices, call.indices, transformed, local);
+
+  const ScreenMapping mapping = ScreenMapping::forState(state);
+  const SetupContext setup{mapping, state.format, drawableRect(fb, state), state.cullMode,
+                           state.frontFace};
+  std::vector<SetupTriangle<N>> triangles;
+  clipAndSetup(transformed, setup, ClipPlanes::forState(state, mapping), triangles, local);
+
+  TileBins bins(fb.width(), fb.height());
+  for (uint32_t i = 0; i < triangles.size(); ++i)
+    bins.add(i, triangles[i].edges, triangles[i].bounds, state.format, local);
+  bins.finish();
+  local.binEntries += bins.entryCount();
+
+  runBackEnd(fb, state, bins, triangles, call.pixelShader, local);
+  stats += local;
+  return Status::ok();
+}
+
+}  // namespace rast

@@ -1,0 +1,78 @@
+#include "pipeline/framebuffer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <OpenImageIO/imageio.h>
+
+namespace rast {
+namespace {
+
+uint32_t toByte(float v) {
+  // Written so that NaN fails both comparisons and becomes 0: a NaN colour never reaches a cast.
+  const float clamped = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+  return uint32_t(clamped * 255.0f + 0.5f);
+}
+
+Status writeImage(const std::string& path, int width, int height, int channels,
+                  OIIO::TypeDesc type, const void* pixels) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) return Status::error("cannot write '" + path + "': " + OIIO::geterror());
+  OIIO::ImageSpec spec(width, height, channels, type);
+  if (!out->open(path, spec) || !out->write_image(type, pixels) || !out->close())
+    return Status::error("cannot write '" + path + "': " + out->geterror());
+  return Status::ok();
+}
+
+}  // namespace
+
+PackedColor packColor(glm::vec4 c) {
+  return toByte(c.r) | (toByte(c.g) << 8) | (toByte(c.b) << 16) | (toByte(c.a) << 24);
+}
+
+glm::vec4 unpackColor(PackedColor c) {
+  return glm::vec4(float(c & 255), float((c >> 8) & 255), float((c >> 16) & 255),
+                   float(c >> 24)) / 255.0f;
+}
+
+Framebuffer::Framebuffer(int width, int height, bool withCounts)
+    : width_(width), height_(height) {
+  if (width <= 0 || height <= 0) throw std::invalid_argument("framebuffer size must be positive");
+  const size_t n = size_t(width) * size_t(height);
+  color_.assign(n, 0);
+  depth_.assign(n, 1.0f);
+  if (withCounts) counts_.assign(n, 0);
+}
+
+void Framebuffer::clear(glm::vec4 color, float depth) {
+  std::fill(color_.begin(), color_.end(), packColor(color));
+  std::fill(depth_.begin(), depth_.end(), depth);
+}
+
+void Framebuffer::clearCounts() { std::fill(counts_.begin(), counts_.end(), 0u); }
+
+Status writeColorImage(const Framebuffer& fb, const std::string& path) {
+  return writeImage(path, fb.width(), fb.height(), 4, OIIO::TypeDesc::UINT8,
+                    fb.colorPlane().data());
+}
+
+Status writeDepthImage(const Framebuffer& fb, const std::string& path) {
+  return writeImage(path, fb.width(), fb.height(), 1, OIIO::TypeDesc::FLOAT,
+                    fb.depthPlane().data());
+}
+
+Status writeCountImage(const Framebuffer& fb, const std::string& path) {
+  if (!fb.hasCounts()) return Status::error("the framebuffer keeps no counts");
+  std::vector<uint16_t> grey(fb.countPlane().size());
+  bool saturated = false;
+  std::transform(fb.countPlane().begin(), fb.countPlane().end(), grey.begin(), [&](uint32_t c) {
+    saturated |= c > 65535;
+    return uint16_t(std::min<uint32_t>(c, 65535));
+  });
+  Status s = writeImage(path, fb.width(), fb.height(), 1, OIIO::TypeDesc::UINT16, grey.data());
+  if (s && saturated) return Status::error("count image '" + path + "' saturated at 65535");
+  return s;
+}
+
+}  // namespace rast

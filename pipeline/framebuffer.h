@@ -1,0 +1,58 @@
+// The framebuffer: RGBA8 colour, 32-bit float depth and an optional per-pixel count of written
+// fragments, each row-major with row 0 at the top.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "pipeline/status.h"
+
+namespace rast {
+
+// RGBA8 packed with red in the low byte (the byte order of an RGBA image in memory).
+using PackedColor = uint32_t;
+
+PackedColor packColor(glm::vec4 rgba);  // clamps to [0, 1] (NaN -> 0), rounds to nearest
+glm::vec4 unpackColor(PackedColor c);
+
+class Framebuffer {
+ public:
+  Framebuffer(int width, int height, bool withCounts = false);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  bool hasCounts() const { return !counts_.empty(); }
+
+  void clear(glm::vec4 color, float depth);
+  void clearCounts();
+
+  PackedColor color(int x, int y) const { return color_[index(x, y)]; }
+  float depth(int x, int y) const { return depth_[index(x, y)]; }
+  uint32_t count(int x, int y) const { return counts_[index(x, y)]; }
+
+  std::vector<PackedColor>& colorPlane() { return color_; }
+  std::vector<float>& depthPlane() { return depth_; }
+  std::vector<uint32_t>& countPlane() { return counts_; }
+  const std::vector<PackedColor>& colorPlane() const { return color_; }
+  const std::vector<float>& depthPlane() const { return depth_; }
+  const std::vector<uint32_t>& countPlane() const { return counts_; }
+
+  size_t index(int x, int y) const { return size_t(y) * size_t(width_) + size_t(x); }
+
+ private:
+  int width_, height_;
+  std::vector<PackedColor> color_;
+  std::vector<float> depth_;
+  std::vector<uint32_t> counts_;
+};
+
+// Image output through OpenImageIO; the format follows the file extension.
+Status writeColorImage(const Framebuffer& fb, const std::string& path);  // .png, .exr, .tif ...
+Status writeDepthImage(const Framebuffer& fb, const std::string& path);  // .exr or .pfm: float
+// 16-bit grey (.png, .pgm): counts above 65535 saturate, and the call says so in its message.
+Status writeCountImage(const Framebuffer& fb, const std::string& path);
+
+}  // namespace rast

@@ -1,0 +1,42 @@
+// The output merger: depth compare, depth write, colour write, fragment counting. Its
+// configuration is a template parameter, fixed per draw, so the per-pixel code holds no branch on
+// state (a disabled depth test reads no depth at all).
+#pragma once
+
+#include <cstdint>
+
+#include "pipeline/framebuffer.h"
+#include "pipeline/state.h"
+
+namespace rast {
+
+template <CompareOp Op>
+constexpr bool depthPasses(float fragment, float stored) {
+  if constexpr (Op == CompareOp::Never) return false;
+  else if constexpr (Op == CompareOp::Less) return fragment < stored;
+  else if constexpr (Op == CompareOp::Equal) return fragment == stored;
+  else if constexpr (Op == CompareOp::LessEqual) return fragment <= stored;
+  else if constexpr (Op == CompareOp::Greater) return fragment > stored;
+  else if constexpr (Op == CompareOp::NotEqual) return fragment != stored;
+  else if constexpr (Op == CompareOp::GreaterEqual) return fragment >= stored;
+  else return true;
+}
+
+template <CompareOp Op, bool DepthWrite, bool ColorWrite, bool EarlyDepth, bool CountFragments>
+struct MergeConfig {
+  static constexpr CompareOp kCompare = Op;
+  static constexpr bool kDepthWrite = DepthWrite;
+  static constexpr bool kColorWrite = ColorWrite;
+  static constexpr bool kEarlyDepth = EarlyDepth;
+  static constexpr bool kCountFragments = CountFragments;
+  static constexpr bool kDepthRead = Op != CompareOp::Always && Op != CompareOp::Never;
+};
+
+// Raw pointers into the framebuffer's planes, taken once per draw.
+struct MergeTarget {
+  PackedColor* color;
+  float* depth;
+  uint32_t* counts;  // null when not counting
+};
+
+}  // namespace rast

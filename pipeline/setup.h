@@ -1,0 +1,104 @@
+// Triangle setup in the pipeline: viewport transform and snapping, coverage setup (edge
+// functions, fill rule, bounds), culling, and the plane equations the back end interpolates.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include "pipeline/shader.h"
+#include "pipeline/state.h"
+#include "pipeline/statistics.h"
+#include "pipeline/viewport.h"
+#include "rasterizer/plane_equation.h"
+#include "rasterizer/triangle_setup.h"
+
+namespace rast {
+
+// Everything the back end needs of one triangle. N: varyings the pixel shader reads.
+template <int N>
+struct SetupTriangle {
+  std::array<EdgeFunction, 3> edges;
+  PixelRect bounds;  // planes are anchored at the centre of pixel (bounds.x0, bounds.y0)
+  PlaneEquation depth;
+  PlaneEquation invW;
+  std::array<PlaneEquation, N> varyingsOverW;
+  uint32_t primitiveId = 0;
+  bool frontFacing = true;
+};
+
+// Draw-time constants of setup.
+struct SetupContext {
+  ScreenMapping mapping;
+  FixedPointFormat format;
+  PixelRect clipRect;  // viewport, scissor and framebuffer, intersected
+  CullMode cullMode;
+  FrontFace frontFace;
+};
+
+// Sets up one triangle whose vertices lie inside the guard band (the clipper made sure). Returns
+// false, having counted why, when it draws nothing.
+template <int N>
+bool setupTriangle(const std::array<const ShadedVertex<N>*, 3>& v, const SetupContext& ctx,
+                   uint32_t primitiveId, SetupTriangle<N>& out, PipelineStatistics& stats) {
+  std::array<WindowPosition, 3> w;
+  for (int i = 0; i < 3; ++i) {
+    w[i] = ctx.mapping.toWindow(v[i]->position);
+    if (!std::isfinite(w[i].x) || !std::isfinite(w[i].y) || !std::isfinite(w[i].z) ||
+        !std::isfinite(w[i].invW)) {
+      ++stats.clipDegenerate;
+      return false;
+    }
+  }
+  std::array<SnappedPoint, 3> snapped;
+  for (int i = 0; i < 3; ++i)
+    snapped[i] = {snapToSubpixels(w[i].x, ctx.format), snapToSubpixels(w[i].y, ctx.format)};
+
+  CoverageSetup coverage;
+  const SetupOutcome outcome = setupCoverage(snapped, ctx.clipRect, ctx.format, coverage);
+  if (outcome == SetupOutcome::ZeroArea) {
+    ++stats.setupZeroArea;
+    return false;
+  }
+  const bool front = coverage.clockwiseOnScreen == (ctx.frontFace == FrontFace::Clockwise);
+  if (ctx.cullMode == CullMode::Back && !front) {
+    ++stats.setupCulledBack;
+    return false;
+  }
+  if (ctx.cullMode == CullMode::Front && front) {
+    ++stats.setupCulledFront;
+    return false;
+  }
+  if (outcome == SetupOutcome::NoSamples) {
+    ++stats.setupNoSamples;
+    return false;
+  }
+
+  out.edges = coverage.edges;
+  out.bounds = coverage.bounds;
+  out.primitiveId = primitiveId;
+  out.frontFacing = front;
+
+  // Planes through the snapped positions, so interpolation agrees with the coverage it serves.
+  std::array<double, 3> x, y, depth, invW;
+  for (int i = 0; i < 3; ++i) {
+    x[i] = subpixelsToPixels(snapped[i].x, ctx.format);
+    y[i] = subpixelsToPixels(snapped[i].y, ctx.format);
+    depth[i] = w[i].z;
+    invW[i] = w[i].invW;
+  }
+  const double signedArea = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+  const double inv = 1.0 / signedArea;
+  const int ax = out.bounds.x0, ay = out.bounds.y0;
+  out.depth = PlaneEquation::through(x, y, depth, inv, ax, ay);
+  out.invW = PlaneEquation::through(x, y, invW, inv, ax, ay);
+  for (int k = 0; k < N; ++k) {
+    std::array<double, 3> overW;
+    for (int i = 0; i < 3; ++i) overW[i] = double(v[i]->varyings[k]) * w[i].invW;
+    out.varyingsOverW[k] = PlaneEquation::through(x, y, overW, inv, ax, ay);
+  }
+  ++stats.setupTriangles;
+  return true;
+}
+
+}  // namespace rast

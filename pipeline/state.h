@@ -1,0 +1,52 @@
+// Pipeline state: everything a draw needs besides its vertices and shaders. Read once per draw;
+// the back end is specialised on it (see draw.h), so nothing here is tested per pixel.
+#pragma once
+
+#include <optional>
+
+#include "rasterizer/fixed_point.h"
+#include "rasterizer/pixel_rect.h"
+
+namespace rast {
+
+enum class CullMode { None, Back, Front };
+
+// Winding as seen on the displayed image (row 0 at the top), the same picture OpenGL shows, so
+// CounterClockwise here is OpenGL's default front face.
+enum class FrontFace { CounterClockwise, Clockwise };
+
+enum class CompareOp { Never, Less, Equal, LessEqual, Greater, NotEqual, GreaterEqual, Always };
+
+// Where the vertex shader's positions live.
+//   Clip:   homogeneous clip space, OpenGL conventions (-w <= x, y, z <= w), mapped through the
+//           viewport with y flipped so window y points down, and depth = 0.5 * z/w + 0.5.
+//   Window: already window coordinates (x, y in pixels, y down, z in [0, 1]) with w = 1; snapped
+//           as given, for coverage comparisons with other rasterizers.
+enum class PositionSpace { Clip, Window };
+
+struct Viewport {
+  int x = 0, y = 0, width = 0, height = 0;  // pixels, top-left origin
+};
+
+struct DepthState {
+  CompareOp compare = CompareOp::Less;
+  bool write = true;
+  // Test before the pixel shader (skipping shading of hidden fragments). Off moves the test
+  // after shading, to measure what early depth saves; results are identical either way.
+  bool early = true;
+
+  bool enabled() const { return compare != CompareOp::Always || write; }
+};
+
+struct PipelineState {
+  Viewport viewport;
+  std::optional<PixelRect> scissor;
+  PositionSpace positionSpace = PositionSpace::Clip;
+  FixedPointFormat format = FixedPointFormat::d24_4();
+  CullMode cullMode = CullMode::None;
+  FrontFace frontFace = FrontFace::CounterClockwise;
+  DepthState depth;
+  bool colorWrite = true;
+};
+
+}  // namespace rast

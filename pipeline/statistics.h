@@ -1,0 +1,83 @@
+// Per-draw counters, named by stage. Every counter is exact and independent of thread count.
+#pragma once
+
+#include <cstdint>
+#include <array>
+#include <string>
+#include <utility>
+
+namespace rast {
+
+struct PipelineStatistics {
+  // vertex
+  uint64_t inputIndices = 0;
+  uint64_t vertexShaderInvocations = 0;  // one per unique index (post-transform cache)
+  // clip (triangles)
+  uint64_t inputTriangles = 0;
+  uint64_t clipNonFinite = 0;        // a NaN or infinite position: dropped
+  uint64_t clipTrivialReject = 0;    // all vertices outside one viewport or depth plane
+  uint64_t clipClipped = 0;          // crossed the near, far or guard-band planes
+  uint64_t clipOutputTriangles = 0;  // triangles leaving the clipper (the unclipped ones too)
+  uint64_t clipDegenerate = 0;       // clipped to a sliver that no longer projects (w -> 0)
+  // setup
+  uint64_t setupCulledBack = 0;
+  uint64_t setupCulledFront = 0;
+  uint64_t setupZeroArea = 0;   // snapped vertices collinear
+  uint64_t setupNoSamples = 0;  // bounding box holds no pixel centre inside viewport and scissor
+  uint64_t setupTriangles = 0;  // passed setup
+  // bin
+  uint64_t binEntries = 0;               // (triangle, tile) pairs
+  uint64_t tilesTriviallyRejected = 0;   // tiles in a bounding box that the corner test rejected
+  // raster
+  uint64_t tilesTriviallyAccepted = 0;   // every sample covered, no per-sample test
+  uint64_t tilesPartial = 0;             // per-sample edge tests
+  uint64_t samplesCovered = 0;
+  // pixel / merge
+  uint64_t depthTestsPassed = 0;
+  uint64_t depthTestsFailed = 0;
+  uint64_t pixelShaderInvocations = 0;
+  uint64_t fragmentsDiscarded = 0;
+  uint64_t fragmentsWritten = 0;  // passed every test; what the count image counts
+
+  template <class F>
+  void forEachCounter(F&& f) const;  // f(name, value) for every counter, "stage.counter"
+
+  PipelineStatistics& operator+=(const PipelineStatistics& o);
+  friend bool operator==(const PipelineStatistics&, const PipelineStatistics&) = default;
+  std::string toJson(int indent = 2) const;
+};
+
+// Every counter with its name: the one list that JSON, tables and summation all use.
+inline constexpr std::array<std::pair<const char*, uint64_t PipelineStatistics::*>, 23>
+    kPipelineCounters = {{
+    {"vertex.input_indices", &PipelineStatistics::inputIndices},
+    {"vertex.shader_invocations", &PipelineStatistics::vertexShaderInvocations},
+    {"clip.input_triangles", &PipelineStatistics::inputTriangles},
+    {"clip.non_finite", &PipelineStatistics::clipNonFinite},
+    {"clip.trivial_reject", &PipelineStatistics::clipTrivialReject},
+    {"clip.clipped", &PipelineStatistics::clipClipped},
+    {"clip.output_triangles", &PipelineStatistics::clipOutputTriangles},
+    {"clip.degenerate", &PipelineStatistics::clipDegenerate},
+    {"setup.culled_back", &PipelineStatistics::setupCulledBack},
+    {"setup.culled_front", &PipelineStatistics::setupCulledFront},
+    {"setup.zero_area", &PipelineStatistics::setupZeroArea},
+    {"setup.no_samples", &PipelineStatistics::setupNoSamples},
+    {"setup.triangles", &PipelineStatistics::setupTriangles},
+    {"bin.entries", &PipelineStatistics::binEntries},
+    {"bin.tiles_trivially_rejected", &PipelineStatistics::tilesTriviallyRejected},
+    {"raster.tiles_trivially_accepted", &PipelineStatistics::tilesTriviallyAccepted},
+    {"raster.tiles_partial", &PipelineStatistics::tilesPartial},
+    {"raster.samples_covered", &PipelineStatistics::samplesCovered},
+    {"merge.depth_passed", &PipelineStatistics::depthTestsPassed},
+    {"merge.depth_failed", &PipelineStatistics::depthTestsFailed},
+    {"pixel.shader_invocations", &PipelineStatistics::pixelShaderInvocations},
+    {"pixel.discarded", &PipelineStatistics::fragmentsDiscarded},
+    {"merge.fragments_written", &PipelineStatistics::fragmentsWritten},
+}};
+
+template <class F>
+void PipelineStatistics::forEachCounter(F&& f) const {
+  for (const auto& [name, member] : kPipelineCounters) f(name, this->*member);
+}
+
+}  // namespace rast

@@ -1,0 +1,55 @@
+#include "rasterizer/coverage.h"
+
+#include <algorithm>
+
+namespace rast {
+
+CoverageMask rectMask(const PixelRect& rect, int tileX, int tileY) {
+  const int ox = tileX * kTileSize, oy = tileY * kTileSize;
+  const int x0 = std::clamp(rect.x0 - ox, 0, kTileSize), x1 = std::clamp(rect.x1 - ox, 0, kTileSize);
+  const int y0 = std::clamp(rect.y0 - oy, 0, kTileSize), y1 = std::clamp(rect.y1 - oy, 0, kTileSize);
+  if (x0 >= x1 || y0 >= y1) return 0;
+  const uint64_t row = ((uint64_t{1} << (x1 - x0)) - 1) << x0;
+  CoverageMask mask = 0;
+  for (int y = y0; y < y1; ++y) mask |= row << (y * kTileSize);
+  return mask;
+}
+
+CoverageMask coverageScalar(const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
+                            int tileX, int tileY, FixedPointFormat format) {
+  CoverageMask mask = 0;
+  for (int ly = 0; ly < kTileSize; ++ly) {
+    const int py = tileY * kTileSize + ly;
+    const int64_t sy = pixelCentreSubpixels(py, format);
+    for (int lx = 0; lx < kTileSize; ++lx) {
+      const int px = tileX * kTileSize + lx;
+      const int64_t sx = pixelCentreSubpixels(px, format);
+      const bool inside = edges[0].at(sx, sy) >= 0 && edges[1].at(sx, sy) >= 0 &&
+                          edges[2].at(sx, sy) >= 0;
+      if (inside) mask |= CoverageMask{1} << coverageBit(lx, ly);
+    }
+  }
+  return mask & rectMask(bounds, tileX, tileY);
+}
+
+TileCoverage classifyTile(const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
+                          int tileX, int tileY, FixedPointFormat format) {
+  const int64_t sx0 = pixelCentreSubpixels(tileX * kTileSize, format);
+  const int64_t sy0 = pixelCentreSubpixels(tileY * kTileSize, format);
+  const int64_t span = int64_t(kTileSize - 1) << format.fractionBits;
+  bool allInside = true;
+  for (const EdgeFunction& e : edges) {
+    const int64_t e00 = e.at(sx0, sy0);
+    const int64_t dx = e.a * span, dy = e.b * span;
+    const int64_t lo = e00 + std::min<int64_t>(dx, 0) + std::min<int64_t>(dy, 0);
+    const int64_t hi = e00 + std::max<int64_t>(dx, 0) + std::max<int64_t>(dy, 0);
+    if (hi < 0) return TileCoverage::Outside;
+    if (lo < 0) allInside = false;
+  }
+  const PixelRect tile{tileX * kTileSize, tileY * kTileSize, (tileX + 1) * kTileSize,
+                       (tileY + 1) * kTileSize};
+  if (allInside && bounds.intersect(tile) == tile) return TileCoverage::Inside;
+  return TileCoverage::Partial;
+}
+
+}  // namespace rast

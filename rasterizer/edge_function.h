@@ -1,0 +1,43 @@
+// Exact integer edge functions and the top-left fill rule.
+//
+// Window coordinates have y pointing down. For an edge from `from` to `to`,
+//   E(p) = (to.x - from.x) * (p.y - from.y) - (to.y - from.y) * (p.x - from.x) = a*p.x + b*p.y + c
+// is positive on the interior side of every edge of a triangle whose vertices run clockwise on the
+// screen (TriangleSetup orders them so). All values are exact in int64_t (see fixed_point.h).
+#pragma once
+
+#include <cstdint>
+
+namespace rast {
+
+struct SnappedPoint {
+  int32_t x = 0;  // subpixels
+  int32_t y = 0;
+  friend constexpr bool operator==(SnappedPoint, SnappedPoint) = default;
+};
+
+struct EdgeFunction {
+  int64_t a = 0;  // dE/dx per subpixel
+  int64_t b = 0;  // dE/dy per subpixel
+  int64_t c = 0;  // includes the fill-rule bias: a sample is covered when E >= 0
+
+  int64_t at(int64_t x, int64_t y) const { return a * x + b * y + c; }
+
+  // Top-left rule, for a clockwise (on screen, y down) triangle: a sample exactly on an edge is
+  // covered only if the edge is a left edge (interior to its right, E grows with x: a > 0) or a
+  // top edge (horizontal, interior below, E grows with y: a == 0 && b > 0). Of two triangles
+  // sharing an edge, exactly one sees it as top-left (a and b flip sign with the direction), so a
+  // sample on the shared edge is covered once. Non-top-left edges are biased by -1, turning the
+  // strict test E > 0 into E >= 0 on integers.
+  static bool isTopLeft(int64_t a, int64_t b) { return a > 0 || (a == 0 && b > 0); }
+
+  static EdgeFunction through(SnappedPoint from, SnappedPoint to) {
+    EdgeFunction e;
+    e.a = int64_t(from.y) - to.y;
+    e.b = int64_t(to.x) - from.x;
+    e.c = -(e.a * from.x + e.b * from.y) - (isTopLeft(e.a, e.b) ? 0 : 1);
+    return e;
+  }
+};
+
+}  // namespace rast

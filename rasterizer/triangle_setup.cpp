@@ -1,0 +1,47 @@
+#include "rasterizer/triangle_setup.h"
+
+#include <algorithm>
+
+namespace rast {
+namespace {
+
+int64_t floorDiv(int64_t n, int64_t d) { return n >= 0 ? n / d : -((-n + d - 1) / d); }
+
+// First pixel p whose centre p*S + S/2 is >= lo, and last whose centre is <= hi.
+int firstPixelAtOrAfter(int64_t lo, FixedPointFormat f) {
+  const int64_t s = f.subpixelsPerPixel();
+  return int(floorDiv(lo - s / 2 + s - 1, s));
+}
+int lastPixelAtOrBefore(int64_t hi, FixedPointFormat f) {
+  const int64_t s = f.subpixelsPerPixel();
+  return int(floorDiv(hi - s / 2, s));
+}
+
+}  // namespace
+
+SetupOutcome setupCoverage(const std::array<SnappedPoint, 3>& v, const PixelRect& clip,
+                           FixedPointFormat format, CoverageSetup& out) {
+  // Twice the signed area with y down: positive for a clockwise triangle on screen.
+  const int64_t area = (int64_t(v[1].x) - v[0].x) * (int64_t(v[2].y) - v[0].y) -
+                       (int64_t(v[2].x) - v[0].x) * (int64_t(v[1].y) - v[0].y);
+  if (area == 0) return SetupOutcome::ZeroArea;
+
+  out.clockwiseOnScreen = area > 0;
+  out.doubleArea = area > 0 ? area : -area;
+  const SnappedPoint p0 = v[0];
+  const SnappedPoint p1 = area > 0 ? v[1] : v[2];
+  const SnappedPoint p2 = area > 0 ? v[2] : v[1];
+  out.edges = {EdgeFunction::through(p0, p1), EdgeFunction::through(p1, p2),
+               EdgeFunction::through(p2, p0)};
+
+  const int64_t minX = std::min({v[0].x, v[1].x, v[2].x});
+  const int64_t maxX = std::max({v[0].x, v[1].x, v[2].x});
+  const int64_t minY = std::min({v[0].y, v[1].y, v[2].y});
+  const int64_t maxY = std::max({v[0].y, v[1].y, v[2].y});
+  const PixelRect box{firstPixelAtOrAfter(minX, format), firstPixelAtOrAfter(minY, format),
+                      lastPixelAtOrBefore(maxX, format) + 1, lastPixelAtOrBefore(maxY, format) + 1};
+  out.bounds = box.intersect(clip);
+  return out.bounds.empty() ? SetupOutcome::NoSamples : SetupOutcome::Accepted;
+}
+
+}  // namespace rast

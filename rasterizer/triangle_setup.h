@@ -1,0 +1,32 @@
+// Triangle setup for coverage: orientation, zero-area rejection, edge functions with the fill rule,
+// and the bounding box of the pixel centres the triangle can cover.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "rasterizer/edge_function.h"
+#include "rasterizer/fixed_point.h"
+#include "rasterizer/pixel_rect.h"
+
+namespace rast {
+
+enum class SetupOutcome {
+  Accepted,
+  ZeroArea,   // the snapped vertices are collinear
+  NoSamples,  // the bounding box, clipped to `clip`, holds no pixel centre
+};
+
+struct CoverageSetup {
+  std::array<EdgeFunction, 3> edges;  // positive inside; edge i runs from vertex i to i+1
+  PixelRect bounds;                   // pixels whose centres may be covered, inside `clip`
+  bool clockwiseOnScreen = false;     // winding of the input order, before reordering
+  int64_t doubleArea = 0;             // twice the area in subpixels^2, > 0
+};
+
+// `v` are the snapped vertices in submission order. When they run counter-clockwise on screen, the
+// edges are built for the order (v0, v2, v1) so that the interior is positive; `reordered` says so.
+SetupOutcome setupCoverage(const std::array<SnappedPoint, 3>& v, const PixelRect& clip,
+                           FixedPointFormat format, CoverageSetup& out);
+
+}  // namespace rast
