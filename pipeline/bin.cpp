@@ -4,32 +4,54 @@ namespace rast {
 
 TileBins::TileBins(int widthPixels, int heightPixels)
     : tilesX_((widthPixels + kTileSize - 1) / kTileSize),
-      tilesY_((heightPixels + kTileSize - 1) / kTileSize) {}
+      tilesY_((heightPixels + kTileSize - 1) / kTileSize),
+      offsets_(size_t(tilesX_) * size_t(tilesY_) + 1, 0) {}
 
-void TileBins::add(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
-                   const PixelRect& bounds, FixedPointFormat format, PipelineStatistics& stats) {
+void TileBins::addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
+                           const PixelRect& bounds, FixedPointFormat format,
+                           std::vector<Entry>& out, PipelineStatistics& stats) const {
   const int tx0 = bounds.x0 >> kTileShift, tx1 = (bounds.x1 - 1) >> kTileShift;
   const int ty0 = bounds.y0 >> kTileShift, ty1 = (bounds.y1 - 1) >> kTileShift;
-  const bool singleTile = tx0 == tx1 && ty0 == ty1;
+  if (tx0 == tx1 && ty0 == ty1) {
+    // A one-tile triangle is not tested here: its bounds already say it touches the tile.
+    out.push_back({uint32_t(ty0 * tilesX_ + tx0), triangle});
+    return;
+  }
   for (int ty = ty0; ty <= ty1; ++ty) {
     for (int tx = tx0; tx <= tx1; ++tx) {
-      // A one-tile triangle is not tested here: its bounds already say it touches the tile.
-      if (!singleTile && classifyTile(edges, bounds, tx, ty, format) == TileCoverage::Outside) {
+      if (classifyTile(edges, bounds, tx, ty, format) == TileCoverage::Outside) {
         ++stats.tilesTriviallyRejected;
         continue;
       }
-      entries_.push_back({uint32_t(ty * tilesX_ + tx), triangle});
+      out.push_back({uint32_t(ty * tilesX_ + tx), triangle});
     }
   }
 }
 
-void TileBins::finish() {
-  offsets_.assign(size_t(tileCount()) + 1, 0);
-  for (const Entry& e : entries_) ++offsets_[e.tile + 1];
-  for (int t = 0; t < tileCount(); ++t) offsets_[t + 1] += offsets_[t];
-  triangles_.resize(entries_.size());
-  std::vector<uint32_t> cursor(offsets_.begin(), offsets_.end() - 1);
-  for (const Entry& e : entries_) triangles_[cursor[e.tile]++] = e.triangle;
+void TileBins::sortByTile(const std::vector<std::vector<Entry>>& chunks) {
+  const size_t tiles = size_t(tileCount());
+  std::vector<uint32_t> cursor(chunks.size() * tiles, 0);  // per (chunk, tile): count, then slot
+  tbb::parallel_for(size_t{0}, chunks.size(), [&](size_t c) {
+    for (const Entry& e : chunks[c]) ++cursor[c * tiles + e.tile];
+  });
+  offsets_[0] = 0;
+  for (size_t t = 0; t < tiles; ++t) {
+    uint32_t total = 0;
+    for (size_t c = 0; c < chunks.size(); ++c) total += cursor[c * tiles + t];
+    offsets_[t + 1] = offsets_[t] + total;
+  }
+  tbb::parallel_for(size_t{0}, tiles, [&](size_t t) {
+    uint32_t slot = offsets_[t];
+    for (size_t c = 0; c < chunks.size(); ++c) {
+      const uint32_t n = cursor[c * tiles + t];
+      cursor[c * tiles + t] = slot;
+      slot += n;
+    }
+  });
+  triangles_.resize(offsets_[tiles]);
+  tbb::parallel_for(size_t{0}, chunks.size(), [&](size_t c) {
+    for (const Entry& e : chunks[c]) triangles_[cursor[c * tiles + e.tile]++] = e.triangle;
+  });
 }
 
 }  // namespace rast

@@ -6,13 +6,15 @@
 #include <span>
 #include <vector>
 
+#include "pipeline/execution.h"
 #include "pipeline/statistics.h"
 #include "rasterizer/coverage.h"
 
 namespace rast {
 
-// Triangle indices grouped by tile (a counting sort of (tile, triangle) pairs, stable, so each
-// bin keeps submission order).
+// Triangle indices grouped by tile. Built from chunks of triangles in parallel, then placed by a
+// stable counting sort (tile-major, chunk-minor), so each bin lists its triangles in submission
+// order whatever the thread count.
 class TileBins {
  public:
   TileBins(int widthPixels, int heightPixels);
@@ -20,16 +22,28 @@ class TileBins {
   int tilesX() const { return tilesX_; }
   int tilesY() const { return tilesY_; }
   int tileCount() const { return tilesX_ * tilesY_; }
+  size_t entryCount() const { return triangles_.size(); }
 
-  // Adds the triangle to every tile of its bounds that the corner test does not reject.
-  void add(uint32_t triangle, const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
-           FixedPointFormat format, PipelineStatistics& stats);
-  // Groups what was added by tile; call once, after the last add.
-  void finish();
-
-  size_t entryCount() const { return entries_.size(); }
   std::span<const uint32_t> bin(int tile) const {
     return {triangles_.data() + offsets_[tile], triangles_.data() + offsets_[tile + 1]};
+  }
+
+  // Bins triangles [0, count); triangle(i) returns an object with `edges` and `bounds`.
+  template <class TriangleAt>
+  void build(size_t count, FixedPointFormat format, TriangleAt&& triangle,
+             PipelineStatistics& stats) {
+    // At most 64 chunks: the counting sort keeps a count per (chunk, tile).
+    const size_t chunkSize = std::max<size_t>(1024, (count + 63) / 64);
+    std::vector<std::vector<Entry>> entries(chunkCount(count, chunkSize));
+    std::vector<PipelineStatistics> chunkStats(entries.size());
+    forEachChunk(count, chunkSize, [&](size_t c, size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) {
+        const auto& t = triangle(i);
+        addTriangle(uint32_t(i), t.edges, t.bounds, format, entries[c], chunkStats[c]);
+      }
+    });
+    for (const PipelineStatistics& s : chunkStats) stats += s;
+    sortByTile(entries);
   }
 
  private:
@@ -37,9 +51,14 @@ class TileBins {
     uint32_t tile;
     uint32_t triangle;
   };
+  // Appends the tiles of `bounds` that the corner test does not reject.
+  void addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
+                   const PixelRect& bounds, FixedPointFormat format, std::vector<Entry>& out,
+                   PipelineStatistics& stats) const;
+  void sortByTile(const std::vector<std::vector<Entry>>& chunks);
+
   int tilesX_, tilesY_;
-  std::vector<Entry> entries_;
-  std::vector<uint32_t> offsets_;
+  std::vector<uint32_t> offsets_;    // bin t is triangles_[offsets_[t], offsets_[t + 1])
   std::vector<uint32_t> triangles_;
 };
 

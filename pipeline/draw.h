@@ -5,7 +5,10 @@
 #include <span>
 #include <vector>
 
+#include <tbb/task_arena.h>
+
 #include "pipeline/bin.h"
+#include "pipeline/execution.h"
 #include "pipeline/framebuffer.h"
 #include "pipeline/front_end.h"
 #include "pipeline/state.h"
@@ -33,30 +36,32 @@ Status validateDraw(const Framebuffer& fb, const PipelineState& state, size_t ve
 PixelRect drawableRect(const Framebuffer& fb, const PipelineState& state);
 
 // Renders the draw into `fb` and adds its counters to `stats`. On an error nothing is drawn.
+// `exec` chooses threads and coverage kernel; no choice changes a bit of the output.
 template <VertexShader VS, PixelShader PS>
 Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>& call,
-            PipelineStatistics& stats) {
+            PipelineStatistics& stats, const ExecutionOptions& exec = {}) {
   constexpr int N = PS::kVaryings;
   static_assert(N <= VS::kVaryings, "the pixel shader reads more varyings than the vertex shader writes");
   if (Status s = validateDraw(fb, state, call.vertices.size(), call.indices); !s) return s;
   PipelineStatistics local;
+  tbb::task_arena arena(exec.threads > 0 ? exec.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    TransformedVertices<N> transformed;
+    runVertexStage<VS, N>(call.vertexShader, call.vertices, call.indices, transformed, local);
 
-  TransformedVertices<N> transformed;
-  runVertexStage<VS, N>(call.vertexShader, call.vertices, call.indices, transformed, local);
+    const ScreenMapping mapping = ScreenMapping::forState(state);
+    const SetupContext setup{mapping, state.format, drawableRect(fb, state), state.cullMode,
+                             state.frontFace};
+    std::vector<SetupTriangle<N>> triangles;
+    clipAndSetupAll(transformed, setup, ClipPlanes::forState(state, mapping), triangles, local);
 
-  const ScreenMapping mapping = ScreenMapping::forState(state);
-  const SetupContext setup{mapping, state.format, drawableRect(fb, state), state.cullMode,
-                           state.frontFace};
-  std::vector<SetupTriangle<N>> triangles;
-  clipAndSetup(transformed, setup, ClipPlanes::forState(state, mapping), triangles, local);
+    TileBins bins(fb.width(), fb.height());
+    bins.build(triangles.size(), state.format,
+               [&](size_t i) -> const SetupTriangle<N>& { return triangles[i]; }, local);
+    local.binEntries += bins.entryCount();
 
-  TileBins bins(fb.width(), fb.height());
-  for (uint32_t i = 0; i < triangles.size(); ++i)
-    bins.add(i, triangles[i].edges, triangles[i].bounds, state.format, local);
-  bins.finish();
-  local.binEntries += bins.entryCount();
-
-  runBackEnd(fb, state, bins, triangles, call.pixelShader, local);
+    runBackEnd(fb, state, bins, triangles, call.pixelShader, exec.coverage, local);
+  });
   stats += local;
   return Status::ok();
 }

@@ -8,38 +8,48 @@
 #include <vector>
 
 #include "pipeline/clip.h"
+#include "pipeline/execution.h"
 #include "pipeline/setup.h"
 #include "pipeline/vertex_stage.h"
 
 namespace rast {
 
+// Per vertex, computed once: finite or not, and which planes it is outside of.
+struct VertexClipCodes {
+  bool finite;
+  unsigned reject;
+  unsigned clip;
+};
+
 template <int N>
-void clipAndSetup(const TransformedVertices<N>& in, const SetupContext& ctx,
+std::vector<VertexClipCodes> computeClipCodes(const std::vector<ShadedVertex<N>>& vertices,
+                                              const ClipPlanes& planes) {
+  std::vector<VertexClipCodes> codes(vertices.size());
+  forEachChunk(vertices.size(), 4096, [&](size_t, size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const glm::vec4& p = vertices[i].position;
+      const bool finite =
+          std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.w);
+      codes[i] = {finite, finite ? outsideMask(planes.reject, p) : 0u,
+                  finite ? outsideMask(planes.clip, p) : 0u};
+    }
+  });
+  return codes;
+}
+
+// Clips and sets up triangles [begin, end) of the draw, appending to `out` in order.
+template <int N>
+void clipAndSetup(const TransformedVertices<N>& in, const std::vector<VertexClipCodes>& codes,
+                  uint32_t begin, uint32_t end, const SetupContext& ctx,
                   const ClipPlanes& planes, std::vector<SetupTriangle<N>>& out,
                   PipelineStatistics& stats) {
-  // Per vertex, once: finite or not, and which planes it is outside of.
-  struct VertexCodes {
-    bool finite;
-    unsigned reject;
-    unsigned clip;
-  };
-  std::vector<VertexCodes> codes(in.vertices.size());
-  for (size_t i = 0; i < in.vertices.size(); ++i) {
-    const glm::vec4& p = in.vertices[i].position;
-    const bool finite =
-        std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.w);
-    codes[i] = {finite, finite ? outsideMask(planes.reject, p) : 0u,
-                finite ? outsideMask(planes.clip, p) : 0u};
-  }
-
-  const uint32_t triangleCount = uint32_t(in.indices.size() / 3);
-  stats.inputTriangles += triangleCount;
-  out.reserve(out.size() + triangleCount);
+  stats.inputTriangles += end - begin;
+  out.reserve(out.size() + (end - begin));
   ClipPolygon<N> polygon;
   SetupTriangle<N> triangle;
-  for (uint32_t t = 0; t < triangleCount; ++t) {
+  for (uint32_t t = begin; t < end; ++t) {
     const uint32_t i0 = in.indices[3 * t], i1 = in.indices[3 * t + 1], i2 = in.indices[3 * t + 2];
-    const VertexCodes &c0 = codes[i0], &c1 = codes[i1], &c2 = codes[i2];
+    const VertexClipCodes &c0 = codes[i0], &c1 = codes[i1], &c2 = codes[i2];
     if (!c0.finite || !c1.finite || !c2.finite) {
       ++stats.clipNonFinite;
       continue;
@@ -66,6 +76,32 @@ void clipAndSetup(const TransformedVertices<N>& in, const SetupContext& ctx,
       if (setupTriangle(part, ctx, t, triangle, stats)) out.push_back(triangle);
     }
   }
+}
+
+// The whole front end after the vertex stage, in parallel chunks of triangles whose results are
+// joined in submission order.
+template <int N>
+void clipAndSetupAll(const TransformedVertices<N>& in, const SetupContext& ctx,
+                     const ClipPlanes& planes, std::vector<SetupTriangle<N>>& out,
+                     PipelineStatistics& stats) {
+  const std::vector<VertexClipCodes> codes = computeClipCodes(in.vertices, planes);
+  constexpr size_t kChunk = 4096;
+  const size_t triangleCount = in.indices.size() / 3;
+  const size_t chunks = chunkCount(triangleCount, kChunk);
+  std::vector<std::vector<SetupTriangle<N>>> parts(chunks);
+  std::vector<PipelineStatistics> partStats(chunks);
+  forEachChunk(triangleCount, kChunk, [&](size_t c, size_t begin, size_t end) {
+    clipAndSetup(in, codes, uint32_t(begin), uint32_t(end), ctx, planes, parts[c], partStats[c]);
+  });
+  std::vector<size_t> offsets(chunks + 1, 0);
+  for (size_t c = 0; c < chunks; ++c) {
+    offsets[c + 1] = offsets[c] + parts[c].size();
+    stats += partStats[c];
+  }
+  out.resize(offsets[chunks]);
+  tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
+    std::copy(parts[c].begin(), parts[c].end(), out.begin() + ptrdiff_t(offsets[c]));
+  });
 }
 
 }  // namespace rast

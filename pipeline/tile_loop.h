@@ -7,7 +7,11 @@
 #include <type_traits>
 #include <vector>
 
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
+
 #include "pipeline/bin.h"
+#include "rasterizer/coverage_kernels.h"
 #include "pipeline/interpolate.h"
 #include "pipeline/merge.h"
 #include "pipeline/shader.h"
@@ -64,8 +68,8 @@ void processFragment(const SetupTriangle<N>& t, int px, int py, const PS& shader
 template <PixelShader PS, class Merge, int N = PS::kVaryings>
 void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
                    const std::vector<SetupTriangle<N>>& triangles, const PS& shader,
-                   FixedPointFormat format, const MergeTarget& target, int framebufferWidth,
-                   PipelineStatistics& stats) {
+                   FixedPointFormat format, const CoverageKernel& kernel,
+                   const MergeTarget& target, int framebufferWidth, PipelineStatistics& stats) {
   for (const uint32_t index : bin) {
     const SetupTriangle<N>& t = triangles[index];
     CoverageMask mask;
@@ -79,7 +83,7 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
         break;
       case TileCoverage::Partial:
         ++stats.tilesPartial;
-        mask = coverageScalar(t.edges, t.bounds, tileX, tileY, format);
+        mask = coverTile(kernel, t.edges, t.bounds, tileX, tileY, format);
         break;
     }
     stats.samplesCovered += uint64_t(std::popcount(mask));
@@ -118,11 +122,13 @@ void withFlag(bool flag, F&& f) {
 
 }  // namespace detail
 
-// Runs every tile, specialised once per draw on the merge state.
+// Runs every tile, specialised once per draw on the merge state. Tiles run in parallel: each
+// pixel belongs to one tile, and one task owns a tile, so no two tasks touch the same pixel, and
+// within a tile triangles merge in submission order; statistics are sums, the same in any order.
 template <PixelShader PS, int N = PS::kVaryings>
 void runBackEnd(Framebuffer& fb, const PipelineState& state, const TileBins& bins,
                 const std::vector<SetupTriangle<N>>& triangles, const PS& shader,
-                PipelineStatistics& stats) {
+                const CoverageKernel& kernel, PipelineStatistics& stats) {
   const MergeTarget target{fb.colorPlane().data(), fb.depthPlane().data(),
                            fb.hasCounts() ? fb.countPlane().data() : nullptr};
   detail::withCompareOp(state.depth.compare, [&](auto op) {
@@ -133,10 +139,13 @@ void runBackEnd(Framebuffer& fb, const PipelineState& state, const TileBins& bin
             using Merge = MergeConfig<decltype(op)::value, decltype(depthWrite)::value,
                                       decltype(colorWrite)::value, decltype(early)::value,
                                       decltype(count)::value>;
-            for (int ty = 0; ty < bins.tilesY(); ++ty)
-              for (int tx = 0; tx < bins.tilesX(); ++tx)
-                rasterizeTile<PS, Merge>(tx, ty, bins.bin(ty * bins.tilesX() + tx), triangles,
-                                         shader, state.format, target, fb.width(), stats);
+            tbb::combinable<PipelineStatistics> perTask;
+            tbb::parallel_for(0, bins.tileCount(), [&](int tile) {
+              const int tx = tile % bins.tilesX(), ty = tile / bins.tilesX();
+              rasterizeTile<PS, Merge>(tx, ty, bins.bin(tile), triangles, shader, state.format,
+                                       kernel, target, fb.width(), perTask.local());
+            });
+            perTask.combine_each([&](const PipelineStatistics& s) { stats += s; });
           });
         });
       });

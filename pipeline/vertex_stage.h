@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "pipeline/execution.h"
 #include "pipeline/shader.h"
 #include "pipeline/statistics.h"
 
@@ -17,29 +18,37 @@ struct TransformedVertices {
   std::vector<uint32_t> indices;          // the draw's indices, renumbered into `vertices`
 };
 
-// Indices must already be validated against vertices.size().
+// Indices must already be validated against vertices.size(). Keeps the first N varyings: the
+// ones the pixel shader reads.
 template <VertexShader VS, int N = VS::kVaryings>
 void runVertexStage(const VS& shader, std::span<const typename VS::Vertex> vertices,
                     std::span<const uint32_t> indices, TransformedVertices<N>& out,
                     PipelineStatistics& stats) {
   static_assert(N <= VS::kVaryings, "the pixel shader reads more varyings than the vertex shader writes");
-  constexpr uint32_t kNotShaded = ~uint32_t{0};
-  std::vector<uint32_t> slot(vertices.size(), kNotShaded);
-  out.vertices.clear();
+  // Numbering unique indices in order of first use is sequential and cheap; shading is not.
+  constexpr uint32_t kNotSeen = ~uint32_t{0};
+  std::vector<uint32_t> slot(vertices.size(), kNotSeen);
+  std::vector<uint32_t> unique;
   out.indices.resize(indices.size());
   for (size_t i = 0; i < indices.size(); ++i) {
     uint32_t& s = slot[indices[i]];
-    if (s == kNotShaded) {
-      s = uint32_t(out.vertices.size());
-      const ShadedVertex<VS::kVaryings> full = shader(vertices[indices[i]]);
-      ShadedVertex<N> kept{full.position, {}};
-      for (int k = 0; k < N; ++k) kept.varyings[k] = full.varyings[k];
-      out.vertices.push_back(kept);
+    if (s == kNotSeen) {
+      s = uint32_t(unique.size());
+      unique.push_back(indices[i]);
     }
     out.indices[i] = s;
   }
+  out.vertices.resize(unique.size());
+  forEachChunk(unique.size(), 4096, [&](size_t, size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const ShadedVertex<VS::kVaryings> full = shader(vertices[unique[i]]);
+      ShadedVertex<N>& kept = out.vertices[i];
+      kept.position = full.position;
+      for (int k = 0; k < N; ++k) kept.varyings[k] = full.varyings[k];
+    }
+  });
   stats.inputIndices += indices.size();
-  stats.vertexShaderInvocations += out.vertices.size();
+  stats.vertexShaderInvocations += unique.size();
 }
 
 }  // namespace rast

@@ -1,0 +1,33 @@
+// How a draw runs: how many threads and which coverage kernel. Neither changes any output bit:
+// tiles are owned by one task at a time and triangles merge in submission order.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <tbb/parallel_for.h>
+
+#include "rasterizer/coverage_kernels.h"
+
+namespace rast {
+
+struct ExecutionOptions {
+  int threads = 0;  // worker threads for a draw; 0: every hardware thread
+  CoverageKernel coverage = bestCoverageKernel();
+};
+
+// Calls f(chunk, begin, end) for consecutive chunks of [0, count) of `chunkSize` items, in
+// parallel. Chunk boundaries depend only on count and chunkSize, never on the thread count.
+template <class F>
+void forEachChunk(size_t count, size_t chunkSize, F&& f) {
+  const size_t chunks = (count + chunkSize - 1) / chunkSize;
+  tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
+    f(c, c * chunkSize, std::min(count, (c + 1) * chunkSize));
+  });
+}
+
+inline size_t chunkCount(size_t count, size_t chunkSize) {
+  return (count + chunkSize - 1) / chunkSize;
+}
+
+}  // namespace rast

@@ -1,0 +1,45 @@
+// Coverage kernels: the same 8x8-tile coverage computed by the scalar reference or by SIMD code
+// compiled for several instruction sets (Highway), chosen at run time. Every kernel returns the
+// reference's mask bit for bit (tests/coverage_kernels_test.cpp).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rasterizer/coverage.h"
+
+namespace rast {
+
+// The edges of one triangle over one tile, prepared for 32-bit lanes: E at the tile's first
+// sample and its steps per pixel. Only edges that are neither all-inside nor all-outside over
+// the tile, and whose values over the tile fit in int32 (see prepareTileEdges), are listed.
+struct TileEdgeSteps {
+  std::array<int32_t, 3> e0;
+  std::array<int32_t, 3> dx;
+  std::array<int32_t, 3> dy;
+  int count = 0;
+};
+
+using CoverageKernelFn = CoverageMask (*)(const TileEdgeSteps&);
+
+struct CoverageKernel {
+  std::string name;           // "scalar", "EMU128", "SSE4", "AVX2", "AVX3", ...
+  CoverageKernelFn simd = nullptr;  // null: the scalar int64 reference (coverageScalar)
+};
+
+// The scalar reference first, then every SIMD target compiled in and supported by this CPU, best
+// last.
+std::vector<CoverageKernel> availableCoverageKernels();
+// The best available kernel (the last of the list).
+CoverageKernel bestCoverageKernel();
+// The kernel of that name, case-insensitive ("auto": the best); false if not available here.
+bool findCoverageKernel(std::string_view name, CoverageKernel& out);
+
+// Coverage of one tile with the given kernel: equal to coverageScalar for every kernel.
+CoverageMask coverTile(const CoverageKernel& kernel, const std::array<EdgeFunction, 3>& edges,
+                       const PixelRect& bounds, int tileX, int tileY, FixedPointFormat format);
+
+}  // namespace rast
