@@ -77,12 +77,21 @@ std::vector<CoverageKernel> availableCoverageKernels() {
   std::vector<int64_t> targets = hwy::SupportedAndGeneratedTargets();
   // Highway lists the best target first (lowest bit); ours ends with the best.
   std::reverse(targets.begin(), targets.end());
-  for (int64_t t : targets)
-    if (CoverageKernelFn fn = kernelForTarget(t)) kernels.push_back({hwy::TargetName(t), fn});
+  for (int64_t t : targets) {
+    CoverageKernelFn fn = kernelForTarget(t);
+    if (!fn) continue;
+    // Highway's own one-lane fallback is also called SCALAR; ours (the int64 reference) keeps
+    // the plain name.
+    const std::string name = hwy::TargetName(t);
+    kernels.push_back({name == "SCALAR" ? "HWY_SCALAR" : name, fn});
+  }
   return kernels;
 }
 
-CoverageKernel bestCoverageKernel() { return availableCoverageKernels().back(); }
+CoverageKernel bestCoverageKernel() {
+  static const CoverageKernel best = availableCoverageKernels().back();  // the CPU does not change
+  return best;
+}
 
 bool findCoverageKernel(std::string_view name, CoverageKernel& out) {
   const std::string wanted = lower(name);

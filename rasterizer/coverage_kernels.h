@@ -26,7 +26,7 @@ struct TileEdgeSteps {
 using CoverageKernelFn = CoverageMask (*)(const TileEdgeSteps&);
 
 struct CoverageKernel {
-  std::string name;           // "scalar", "EMU128", "SSE4", "AVX2", "AVX3", ...
+  std::string name;  // "scalar" (int64 reference), "HWY_SCALAR", "SSSE3", "SSE4", "AVX2", "AVX3"
   CoverageKernelFn simd = nullptr;  // null: the scalar int64 reference (coverageScalar)
 };
 
