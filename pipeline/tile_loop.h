@@ -72,20 +72,19 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
                    const MergeTarget& target, int framebufferWidth, PipelineStatistics& stats) {
   for (const uint32_t index : bin) {
     const SetupTriangle<N>& t = triangles[index];
-    CoverageMask mask;
-    switch (classifyTile(t.edges, t.bounds, tileX, tileY, format)) {
+    const TileCoverageResult coverage = coverTile(kernel, t.edges, t.bounds, tileX, tileY, format);
+    switch (coverage.kind) {
       case TileCoverage::Outside:
         ++stats.tilesTriviallyRejected;
         continue;
       case TileCoverage::Inside:
         ++stats.tilesTriviallyAccepted;
-        mask = kFullMask;
         break;
       case TileCoverage::Partial:
         ++stats.tilesPartial;
-        mask = coverTile(kernel, t.edges, t.bounds, tileX, tileY, format);
         break;
     }
+    CoverageMask mask = coverage.mask;
     stats.samplesCovered += uint64_t(std::popcount(mask));
     for (; mask; mask &= mask - 1) {
       const int bit = std::countr_zero(mask);

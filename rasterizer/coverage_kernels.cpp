@@ -15,31 +15,50 @@ namespace rast {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// Evaluates the listed edges at all 64 samples, Lanes(d) samples at a time. Sample k of the tile
-// is pixel (k % 8, k / 8); E(k) = e0 + (k % 8) * dx + (k / 8) * dy. Every partial sum is the value
-// of E at some sample of the tile, so it fits in int32 by the precondition of TileEdgeSteps.
+// Evaluates three edges at all 64 samples, Lanes(d) samples at a time. Sample k of the tile is
+// pixel (k % 8, k / 8); E(k) = e0 + (k % 8) * dx + (k / 8) * dy. Every partial sum is the value
+// of E at some sample of the tile, so it fits in int32 by the precondition of TileEdgeSteps. A
+// sample is inside when no edge value is negative: one sign test of e0 | e1 | e2.
 CoverageMask CoverTileEdges(const TileEdgeSteps& edges) {
   const hn::ScalableTag<int32_t> d;
-  const size_t lanes = hn::Lanes(d);
+  constexpr size_t kLanes = hn::MaxLanes(d);
+  const auto k = hn::Iota(d, 0);
+  const auto x = hn::And(k, hn::Set(d, 7));
   const auto minusOne = hn::Set(d, -1);
-  const auto seven = hn::Set(d, 7);
-  CoverageMask mask = 0;
-  for (size_t base = 0; base < 64; base += lanes) {
-    const auto k = hn::Iota(d, int32_t(base));
-    const auto x = hn::And(k, seven);
-    const auto y = hn::ShiftRight<3>(k);
-    auto inside = hn::FirstN(d, lanes);
-    for (int i = 0; i < edges.count; ++i) {
-      const auto e = hn::Add(hn::Add(hn::Set(d, edges.e0[i]), hn::Mul(x, hn::Set(d, edges.dx[i]))),
-                             hn::Mul(y, hn::Set(d, edges.dy[i])));
-      inside = hn::And(inside, hn::Gt(e, minusOne));  // E >= 0, the biased fill-rule test
-    }
+  auto start = [&](int i, auto xs, auto ys) {
+    return hn::Add(hn::Add(hn::Set(d, edges.e0[i]), hn::Mul(xs, hn::Set(d, edges.dx[i]))),
+                   hn::Mul(ys, hn::Set(d, edges.dy[i])));
+  };
+  auto insideBits = [&](auto e0, auto e1, auto e2) {
     uint8_t bits[8] = {};
-    hn::StoreMaskBits(d, inside, bits);
-    uint64_t chunk = 0;
-    for (size_t b = 0; b < (lanes + 7) / 8; ++b) chunk |= uint64_t(bits[b]) << (8 * b);
-    if (lanes < 64) chunk &= (uint64_t{1} << lanes) - 1;
-    mask |= chunk << base;
+    hn::StoreMaskBits(d, hn::Gt(hn::Or(hn::Or(e0, e1), e2), minusOne), bits);
+    uint64_t b = 0;
+    for (size_t i = 0; i < (kLanes + 7) / 8; ++i) b |= uint64_t(bits[i]) << (8 * i);
+    return kLanes >= 64 ? b : b & ((uint64_t{1} << kLanes) - 1);
+  };
+  CoverageMask mask = 0;
+  if constexpr (kLanes >= 8) {
+    // Whole rows per vector: start once, then step down kLanes / 8 rows with one add per edge.
+    const auto y = hn::ShiftRight<3>(k);
+    auto e0 = start(0, x, y), e1 = start(1, x, y), e2 = start(2, x, y);
+    constexpr int32_t kRows = int32_t(kLanes / 8);
+    const auto s0 = hn::Set(d, kRows * edges.dy[0]), s1 = hn::Set(d, kRows * edges.dy[1]),
+               s2 = hn::Set(d, kRows * edges.dy[2]);
+    for (size_t base = 0; base < 64; base += kLanes) {
+      mask |= insideBits(e0, e1, e2) << base;
+      // The last step would leave the tile; skip it so no value outside the tile is formed.
+      if (base + kLanes < 64) {
+        e0 = hn::Add(e0, s0);
+        e1 = hn::Add(e1, s1);
+        e2 = hn::Add(e2, s2);
+      }
+    }
+  } else {
+    for (size_t base = 0; base < 64; base += kLanes) {
+      const auto kk = hn::Iota(d, int32_t(base));
+      const auto xs = hn::And(kk, hn::Set(d, 7)), ys = hn::ShiftRight<3>(kk);
+      mask |= insideBits(start(0, xs, ys), start(1, xs, ys), start(2, xs, ys)) << base;
+    }
   }
   return mask;
 }
@@ -107,26 +126,26 @@ bool findCoverageKernel(std::string_view name, CoverageKernel& out) {
   return false;
 }
 
-CoverageMask coverTile(const CoverageKernel& kernel, const std::array<EdgeFunction, 3>& edges,
-                       const PixelRect& bounds, int tileX, int tileY, FixedPointFormat format) {
-  if (!kernel.simd) return coverageScalar(edges, bounds, tileX, tileY, format);
-
+TileCoverageResult coverTile(const CoverageKernel& kernel,
+                             const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
+                             int tileX, int tileY, FixedPointFormat format) {
   // Per edge, from its exact int64 value at the tile's first sample: all 64 samples inside or
-  // outside (no per-sample work), or the edge's values over the tile span at most
-  // 7 * (|dx| + |dy|) around zero. When that span is below 2^31, every value over the tile is an
+  // all outside (no per-sample work), or the edge's values over the tile span
+  // 7 * (|dx| + |dy|) across zero. When that span is below 2^31, every value over the tile is an
   // int32 (lo < 0 <= hi and hi - lo = 7(|dx| + |dy|)), and 32-bit lanes are exact. Longer edges
   // (beyond ~1.2M pixels in 24.4, ~4,600 in 16.8) take the int64 reference path.
   const int64_t sx0 = pixelCentreSubpixels(tileX * kTileSize, format);
   const int64_t sy0 = pixelCentreSubpixels(tileY * kTileSize, format);
   const int64_t step = format.subpixelsPerPixel();
-  TileEdgeSteps steps;
+  // Edges that always pass (inside over the whole tile) are listed as the constant 0.
+  TileEdgeSteps steps{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, 0};
   bool needsWide = false;
   for (const EdgeFunction& e : edges) {
     const int64_t e00 = e.at(sx0, sy0), dx = e.a * step, dy = e.b * step;
     const int64_t spanX = (kTileSize - 1) * dx, spanY = (kTileSize - 1) * dy;
     const int64_t lo = e00 + std::min<int64_t>(spanX, 0) + std::min<int64_t>(spanY, 0);
     const int64_t hi = e00 + std::max<int64_t>(spanX, 0) + std::max<int64_t>(spanY, 0);
-    if (hi < 0) return 0;
+    if (hi < 0) return {0, TileCoverage::Outside};
     if (lo >= 0) continue;
     if (hi - lo >= (int64_t{1} << 31)) {
       needsWide = true;
@@ -137,9 +156,12 @@ CoverageMask coverTile(const CoverageKernel& kernel, const std::array<EdgeFuncti
     steps.dy[steps.count] = int32_t(dy);
     ++steps.count;
   }
-  if (needsWide) return coverageScalar(edges, bounds, tileX, tileY, format);
   const CoverageMask inRect = rectMask(bounds, tileX, tileY);
-  return steps.count == 0 ? inRect : kernel.simd(steps) & inRect;
+  if (steps.count == 0 && !needsWide)
+    return {inRect, inRect == kFullMask ? TileCoverage::Inside : TileCoverage::Partial};
+  if (needsWide || !kernel.simd)
+    return {coverageScalar(edges, bounds, tileX, tileY, format), TileCoverage::Partial};
+  return {kernel.simd(steps) & inRect, TileCoverage::Partial};
 }
 
 }  // namespace rast

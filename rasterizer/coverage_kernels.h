@@ -14,8 +14,8 @@
 namespace rast {
 
 // The edges of one triangle over one tile, prepared for 32-bit lanes: E at the tile's first
-// sample and its steps per pixel. Only edges that are neither all-inside nor all-outside over
-// the tile, and whose values over the tile fit in int32 (see prepareTileEdges), are listed.
+// sample and its steps per pixel. The first `count` are edges that cross the tile and whose
+// values over it fit in int32 (see coverTile); the rest are 0, an edge every sample passes.
 struct TileEdgeSteps {
   std::array<int32_t, 3> e0;
   std::array<int32_t, 3> dx;
@@ -38,8 +38,15 @@ CoverageKernel bestCoverageKernel();
 // The kernel of that name, case-insensitive ("auto": the best); false if not available here.
 bool findCoverageKernel(std::string_view name, CoverageKernel& out);
 
-// Coverage of one tile with the given kernel: equal to coverageScalar for every kernel.
-CoverageMask coverTile(const CoverageKernel& kernel, const std::array<EdgeFunction, 3>& edges,
-                       const PixelRect& bounds, int tileX, int tileY, FixedPointFormat format);
+struct TileCoverageResult {
+  CoverageMask mask;
+  TileCoverage kind;  // Outside or Inside: decided from the tile's corners, no per-sample work
+};
+
+// Coverage of one tile with the given kernel, and whether whole-tile tests decided it. The mask
+// equals coverageScalar for every kernel; the kind equals classifyTile's.
+TileCoverageResult coverTile(const CoverageKernel& kernel,
+                             const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
+                             int tileX, int tileY, FixedPointFormat format);
 
 }  // namespace rast

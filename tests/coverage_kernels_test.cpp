@@ -62,13 +62,15 @@ TEST_P(CoverageKernelTest, MatchesScalarReferenceOnRandomTriangles) {
       for (int k = 0; k < 2; ++k) {  // the tile on the edge and a neighbour
         const int x = tx + k * int(rng() % 3) - k, y = ty + k * int(rng() % 3) - k;
         const CoverageMask expected = coverageScalar(setup.edges, setup.bounds, x, y, format);
-        const CoverageMask actual = coverTile(kernel, setup.edges, setup.bounds, x, y, format);
+        const TileCoverageResult actual = coverTile(kernel, setup.edges, setup.bounds, x, y, format);
+        // The whole-tile decision must agree with the corner classification, too.
+        EXPECT_EQ(actual.kind, classifyTile(setup.edges, setup.bounds, x, y, format));
         partialTiles += expected != 0 && expected != kFullMask;
-        if (actual != expected) {
+        if (actual.mask != expected) {
           ++mismatches;
           ADD_FAILURE() << "triangle " << i << " (" << v[0].x << "," << v[0].y << ") (" << v[1].x
                         << "," << v[1].y << ") (" << v[2].x << "," << v[2].y << ") tile " << x
-                        << "," << y << ": expected " << std::hex << expected << " got " << actual;
+                        << "," << y << ": expected " << std::hex << expected << " got " << actual.mask;
         }
       }
     }
@@ -86,8 +88,8 @@ TEST_P(CoverageKernelTest, RespectsBoundsInsideTheTile) {
   CoverageSetup setup;
   const PixelRect clip{2, 3, 6, 5};
   ASSERT_EQ(setupCoverage(v, clip, f, setup), SetupOutcome::Accepted);
-  EXPECT_EQ(coverTile(kernel, setup.edges, setup.bounds, 0, 0, f), rectMask(clip, 0, 0));
-  EXPECT_EQ(coverTile(kernel, setup.edges, setup.bounds, 1, 0, f), 0u);
+  EXPECT_EQ(coverTile(kernel, setup.edges, setup.bounds, 0, 0, f).mask, rectMask(clip, 0, 0));
+  EXPECT_EQ(coverTile(kernel, setup.edges, setup.bounds, 1, 0, f).mask, 0u);
 }
 
 std::vector<std::string> kernelNames() {

@@ -1,0 +1,225 @@
+// Per-stage microbenchmarks: vertex, clip, setup, bin, raster (per coverage kernel and
+// precision), interpolate, pixel and merge, each reporting items per second on one thread.
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+#include <tbb/task_arena.h>
+
+#include "pipeline/draw.h"
+#include "scene/camera.h"
+#include "scene/mesh.h"
+#include "shaders_cpp/constant_color.h"
+#include "shaders_cpp/lambert.h"
+#include "shaders_cpp/transform.h"
+
+namespace rast {
+namespace {
+
+const Mesh& bunny() {
+  static const Mesh mesh = [] {
+    Mesh m;
+    if (!loadObj(std::string(RASTER_SHARED_MESHES) + "/bunny.obj", m)) m = embeddedBunny();
+    return m;
+  }();
+  return mesh;
+}
+
+// Random triangles of about `area` pixels inside a 1920x1080 screen, as shaded vertices in
+// window space (w = 1), three per triangle.
+std::vector<ShadedVertex<3>> randomTriangles(size_t count, double area, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> x(0, 1920), y(0, 1080), unit(0, 1);
+  const float side = float(std::sqrt(2.0 * area));
+  std::vector<ShadedVertex<3>> v;
+  for (size_t i = 0; i < count; ++i) {
+    const float cx = x(rng), cy = y(rng);
+    for (int k = 0; k < 3; ++k)
+      v.push_back({glm::vec4(cx + side * (unit(rng) - 0.5f), cy + side * (unit(rng) - 0.5f),
+                             unit(rng), 1.0f),
+                   {unit(rng), unit(rng), unit(rng)}});
+  }
+  return v;
+}
+
+SetupContext windowContext(FixedPointFormat format) {
+  PipelineState state;
+  state.viewport = {0, 0, 1920, 1080};
+  state.positionSpace = PositionSpace::Window;
+  state.format = format;
+  return {ScreenMapping::forState(state), format, PixelRect{0, 0, 1920, 1080}, CullMode::None,
+          FrontFace::CounterClockwise};
+}
+
+std::vector<SetupTriangle<3>> setUp(const std::vector<ShadedVertex<3>>& v, FixedPointFormat f) {
+  const SetupContext ctx = windowContext(f);
+  std::vector<SetupTriangle<3>> out;
+  PipelineStatistics stats;
+  SetupTriangle<3> t;
+  for (size_t i = 0; i + 2 < v.size(); i += 3)
+    if (setupTriangle<3>({&v[i], &v[i + 1], &v[i + 2]}, ctx, uint32_t(i / 3), t, stats))
+      out.push_back(t);
+  return out;
+}
+
+void BM_VertexWorldNormal(benchmark::State& state) {
+  const Mesh& mesh = bunny();
+  const WorldNormalVertexShader vs{glm::mat4(1.0f), frameMesh(mesh).viewProjection(16.0f / 9)};
+  tbb::task_arena one(1);
+  for (auto _ : state) {
+    TransformedVertices<6> out;
+    PipelineStatistics stats;
+    one.execute([&] { runVertexStage<WorldNormalVertexShader, 6>(vs, mesh.vertices, mesh.indices, out, stats); });
+    benchmark::DoNotOptimize(out.vertices.data());
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(mesh.indices.size()));
+}
+BENCHMARK(BM_VertexWorldNormal)->Unit(benchmark::kMicrosecond);
+
+// Triangles crossing the near plane (one vertex behind the eye): the full clipping path.
+void BM_ClipNearPlane(benchmark::State& state) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<float> u(-1, 1);
+  std::vector<ShadedVertex<3>> v;
+  for (int i = 0; i < 3000; ++i) {
+    v.push_back({glm::vec4(u(rng), u(rng), 0.5f, 1.0f), {1, 0, 0}});
+    v.push_back({glm::vec4(u(rng), u(rng), 0.5f, 1.0f), {0, 1, 0}});
+    v.push_back({glm::vec4(u(rng), u(rng), -2.0f, 1.0f), {0, 0, 1}});
+  }
+  PipelineState ps;
+  ps.viewport = {0, 0, 1920, 1080};
+  const ScreenMapping m = ScreenMapping::forState(ps);
+  const ClipPlanes planes = ClipPlanes::forState(ps, m);
+  ClipPolygon<3> poly;
+  for (auto _ : state) {
+    for (size_t i = 0; i < v.size(); i += 3) {
+      clipTriangle<3>({&v[i], &v[i + 1], &v[i + 2]}, planes, 0x7F, poly);
+      benchmark::DoNotOptimize(poly.count);
+    }
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(v.size() / 3));
+}
+BENCHMARK(BM_ClipNearPlane)->Unit(benchmark::kMicrosecond);
+
+void BM_SetupTriangle(benchmark::State& state) {
+  const FixedPointFormat f = FixedPointFormat::withFractionBits(int(state.range(0)));
+  const std::vector<ShadedVertex<3>> v = randomTriangles(10000, 50, 1);
+  const SetupContext ctx = windowContext(f);
+  SetupTriangle<3> t;
+  PipelineStatistics stats;
+  for (auto _ : state) {
+    for (size_t i = 0; i < v.size(); i += 3) {
+      benchmark::DoNotOptimize(setupTriangle<3>({&v[i], &v[i + 1], &v[i + 2]}, ctx, 0, t, stats));
+    }
+  }
+  state.SetLabel(f.name());
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(v.size() / 3));
+}
+BENCHMARK(BM_SetupTriangle)->Arg(4)->Arg(8)->Unit(benchmark::kMicrosecond);
+
+void BM_BinSmallTriangles(benchmark::State& state) {
+  const std::vector<SetupTriangle<3>> tris =
+      setUp(randomTriangles(100000, double(state.range(0)), 2), FixedPointFormat::d24_4());
+  tbb::task_arena one(1);
+  for (auto _ : state) {
+    TileBins bins(1920, 1080);
+    PipelineStatistics stats;
+    one.execute([&] {
+      bins.build(tris.size(), FixedPointFormat::d24_4(),
+                 [&](size_t i) -> const SetupTriangle<3>& { return tris[i]; }, stats);
+    });
+    benchmark::DoNotOptimize(bins.entryCount());
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(tris.size()));
+}
+BENCHMARK(BM_BinSmallTriangles)->Arg(10)->Arg(1000)->Unit(benchmark::kMicrosecond);
+
+// Partial tiles only (the per-sample work), for each kernel and precision.
+void BM_RasterCoverage(benchmark::State& state, const CoverageKernel& kernel, int bits) {
+  const FixedPointFormat f = FixedPointFormat::withFractionBits(bits);
+  const std::vector<SetupTriangle<3>> tris = setUp(randomTriangles(20000, 200, 3), f);
+  struct Job { size_t tri; int tx, ty; };
+  std::vector<Job> jobs;
+  for (size_t i = 0; i < tris.size(); ++i) {
+    const PixelRect& b = tris[i].bounds;
+    for (int ty = b.y0 >> 3; ty <= (b.y1 - 1) >> 3; ++ty)
+      for (int tx = b.x0 >> 3; tx <= (b.x1 - 1) >> 3; ++tx)
+        if (classifyTile(tris[i].edges, b, tx, ty, f) == TileCoverage::Partial)
+          jobs.push_back({i, tx, ty});
+  }
+  for (auto _ : state)
+    for (const Job& j : jobs)
+      benchmark::DoNotOptimize(coverTile(kernel, tris[j.tri].edges, tris[j.tri].bounds, j.tx, j.ty, f).mask);
+  state.SetLabel(kernel.name + " " + f.name());
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(jobs.size()));
+  state.counters["samples/s"] = benchmark::Counter(
+      double(state.iterations()) * double(jobs.size()) * 64, benchmark::Counter::kIsRate);
+}
+
+void BM_InterpolateThreeVaryings(benchmark::State& state) {
+  const std::vector<SetupTriangle<3>> tris = setUp(randomTriangles(1000, 500, 4), FixedPointFormat::d24_4());
+  Varyings<3> v;
+  int64_t n = 0;
+  for (auto _ : state) {
+    for (const SetupTriangle<3>& t : tris)
+      for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+          interpolateVaryings<3>(t, float(x), float(y), v);
+          benchmark::DoNotOptimize(v);
+        }
+    n += int64_t(tris.size()) * 64;
+  }
+  state.SetItemsProcessed(n);
+}
+BENCHMARK(BM_InterpolateThreeVaryings)->Unit(benchmark::kMicrosecond);
+
+void BM_PixelLambert(benchmark::State& state) {
+  const LambertShader ps;
+  Fragment<6> f;
+  f.varyings = {0.3f, 0.8f, 0.5f, 1.0f, 2.0f, 3.0f};
+  for (auto _ : state) {
+    for (int i = 0; i < 4096; ++i) {
+      f.varyings[0] = float(i) * 1e-4f;
+      benchmark::DoNotOptimize(ps(f));
+    }
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * 4096);
+}
+BENCHMARK(BM_PixelLambert)->Unit(benchmark::kMicrosecond);
+
+// The output merger alone: depth less with writes, constant colour, one 8x8 tile per triangle.
+void BM_MergeDepthLess(benchmark::State& state) {
+  const std::vector<SetupTriangle<0>> tris = [] {
+    std::vector<SetupTriangle<0>> t(256);
+    for (size_t i = 0; i < t.size(); ++i) {
+      t[i].bounds = {0, 0, 8, 8};
+      t[i].depth = {1.0f - float(i) / 512, 0, 0};
+    }
+    return t;
+  }();
+  Framebuffer fb(8, 8);
+  const ConstantColorShader ps;
+  using Merge = MergeConfig<CompareOp::Less, true, true, true, false>;
+  const MergeTarget target{fb.colorPlane().data(), fb.depthPlane().data(), nullptr};
+  PipelineStatistics stats;
+  for (auto _ : state) {
+    fb.clear(glm::vec4(0), 1.0f);
+    for (const SetupTriangle<0>& t : tris)
+      for (int p = 0; p < 64; ++p)
+        processFragment<ConstantColorShader, Merge>(t, p % 8, p / 8, ps, target, size_t(p), stats);
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(tris.size()) * 64);
+}
+BENCHMARK(BM_MergeDepthLess)->Unit(benchmark::kMicrosecond);
+
+const bool kRegistered = [] {
+  for (const CoverageKernel& k : availableCoverageKernels())
+    for (int bits : {4, 8})
+      benchmark::RegisterBenchmark(("BM_RasterCoverage/" + k.name + "/" + std::to_string(bits)).c_str(),
+                                   BM_RasterCoverage, k, bits)
+          ->Unit(benchmark::kMicrosecond);
+  return true;
+}();
+
+}  // namespace
+}  // namespace rast
