@@ -187,8 +187,9 @@ void BM_PixelLambert(benchmark::State& state) {
 }
 BENCHMARK(BM_PixelLambert)->Unit(benchmark::kMicrosecond);
 
-// The output merger alone: depth less with writes, constant colour, one 8x8 tile per triangle.
-void BM_MergeDepthLess(benchmark::State& state) {
+// Shading and merging alone (no depth test; that runs before, per tile): constant colour, depth
+// and colour writes, one 8x8 tile per triangle.
+void BM_MergeConstantColor(benchmark::State& state) {
   const std::vector<SetupTriangle<0>> tris = [] {
     std::vector<SetupTriangle<0>> t(256);
     for (size_t i = 0; i < t.size(); ++i) {
@@ -206,11 +207,11 @@ void BM_MergeDepthLess(benchmark::State& state) {
     fb.clear(glm::vec4(0), 1.0f);
     for (const SetupTriangle<0>& t : tris)
       for (int p = 0; p < 64; ++p)
-        processFragment<ConstantColorShader, Merge>(t, p % 8, p / 8, ps, target, size_t(p), stats);
+        shadeAndMerge<ConstantColorShader, Merge>(t, p % 8, p / 8, ps, target, size_t(p), stats);
   }
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(tris.size()) * 64);
 }
-BENCHMARK(BM_MergeDepthLess)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MergeConstantColor)->Unit(benchmark::kMicrosecond);
 
 const bool kRegistered = [] {
   for (const CoverageKernel& k : availableCoverageKernels())
