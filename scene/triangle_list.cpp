@@ -29,6 +29,14 @@ Status parseTriangleList(std::string_view text, const std::string& name,
       float v;
       // Parsed straight to float, as a GPU API would receive the vertex.
       const auto [next, ec] = std::from_chars(line.data() + pos, line.data() + line.size(), v);
+      if (ec == std::errc::result_out_of_range) {
+        // A number, but beyond float (1e39; also underflow such as 1e-50, which from_chars
+        // reports alike): say so rather than call it "not a number".
+        size_t stop = pos;
+        while (stop < line.size() && line[stop] != ' ' && line[stop] != '\t') ++stop;
+        return Status::error(where + "'" + std::string(line.substr(pos, stop - pos)) +
+                             "' is out of the float range");
+      }
       if (ec != std::errc() || (next != line.data() + line.size() && *next != ' ' &&
                                 *next != '\t' && *next != '\r')) {
         size_t stop = pos;
