@@ -30,11 +30,12 @@ Mesh triangle(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
 
 template <class PS>
 Status drawObject(Framebuffer& fb, const PipelineState& state, const SceneObject& object,
-                  const glm::mat4& viewProjection, const PS& shader, PipelineStatistics& stats) {
+                  const glm::mat4& viewProjection, const PS& shader, PipelineStatistics& stats,
+                  const ExecutionOptions& exec) {
   WorldNormalVertexShader vs{object.model, viewProjection};
   const DrawCall<WorldNormalVertexShader, PS> call{object.mesh.vertices, object.mesh.indices, vs,
                                                    shader};
-  return draw(fb, state, call, stats);
+  return draw(fb, state, call, stats, exec);
 }
 
 }  // namespace
@@ -80,7 +81,7 @@ Mesh flattenScene(const Scene& scene) {
 }
 
 Status renderScene(const Scene& scene, Framebuffer& fb, const PipelineState& state,
-                   ShadingMode shading, PipelineStatistics& stats) {
+                   ShadingMode shading, PipelineStatistics& stats, const ExecutionOptions& exec) {
   const CompareOp op = state.depth.compare;
   const bool reversed = op == CompareOp::Greater || op == CompareOp::GreaterEqual;
   fb.clear(shading == ShadingMode::TriangleId ? glm::vec4(0, 0, 0, 1) : scene.background,
@@ -94,20 +95,20 @@ Status renderScene(const Scene& scene, Framebuffer& fb, const PipelineState& sta
         s = drawObject(fb, state, object, viewProjection,
                        LambertShader{object.albedo, glm::vec3(0.08f), scene.lightPosition,
                                      glm::vec3(1.0f)},
-                       stats);
+                       stats, exec);
         break;
       case ShadingMode::Normals:
-        s = drawObject(fb, state, object, viewProjection, NormalVisualizerShader{}, stats);
+        s = drawObject(fb, state, object, viewProjection, NormalVisualizerShader{}, stats, exec);
         break;
       case ShadingMode::Depth:
-        s = drawObject(fb, state, object, viewProjection, DepthVisualizerShader{0.9f, 1.0f}, stats);
+        s = drawObject(fb, state, object, viewProjection, DepthVisualizerShader{0.9f, 1.0f}, stats, exec);
         break;
       case ShadingMode::TriangleId:
-        s = drawObject(fb, state, object, viewProjection, TriangleIdShader{}, stats);
+        s = drawObject(fb, state, object, viewProjection, TriangleIdShader{}, stats, exec);
         break;
       case ShadingMode::Constant:
         s = drawObject(fb, state, object, viewProjection,
-                       ConstantColorShader{glm::vec4(object.albedo, 1.0f)}, stats);
+                       ConstantColorShader{glm::vec4(object.albedo, 1.0f)}, stats, exec);
         break;
     }
     if (!s) return s;

@@ -8,6 +8,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "pipeline/execution.h"
 #include "pipeline/framebuffer.h"
 #include "pipeline/state.h"
 #include "pipeline/statistics.h"
@@ -44,6 +45,7 @@ Mesh flattenScene(const Scene& scene);
 // Clears `fb` (colour to the background, depth to `state`'s clear value: 1, or 0 for reversed
 // compares) and draws every object, one draw each, with the camera over the state's viewport.
 Status renderScene(const Scene& scene, Framebuffer& fb, const PipelineState& state,
-                   ShadingMode shading, PipelineStatistics& stats);
+                   ShadingMode shading, PipelineStatistics& stats,
+                   const ExecutionOptions& exec = {});
 
 }  // namespace rast

@@ -27,6 +27,9 @@ struct Options {
   int subpixelBits = 4;
   std::string cull = "none", frontFace = "ccw", depthCompare = "less", shading;
   bool noDepthWrite = false;
+  int threads = 0;
+  std::string coverageKernel = "auto";
+  bool listKernels = false;
   std::string output, depthOutput, countOutput, statsOutput;
   std::vector<float> eye, target;
   float fov = 45.0f, nearPlane = 0.0f, farPlane = 0.0f;
@@ -54,15 +57,24 @@ const std::map<std::string, FrontFace> kFrontFaces = {
 template <class PS>
 Status drawTriangleList(Framebuffer& fb, const PipelineState& state,
                         const std::vector<WindowVertex>& vertices, const PS& shader,
-                        PipelineStatistics& stats) {
+                        PipelineStatistics& stats, const ExecutionOptions& exec) {
   std::vector<uint32_t> indices(vertices.size());
   for (uint32_t i = 0; i < indices.size(); ++i) indices[i] = i;
   const WindowSpaceVertexShader vs;
   return draw(fb, state, DrawCall<WindowSpaceVertexShader, PS>{vertices, indices, vs, shader},
-              stats);
+              stats, exec);
 }
 
 int run(const Options& o) {
+  if (o.listKernels) {
+    for (const CoverageKernel& k : availableCoverageKernels()) std::printf("%s\n", k.name.c_str());
+    return 0;
+  }
+  ExecutionOptions exec;
+  exec.threads = o.threads;
+  if (!findCoverageKernel(o.coverageKernel, exec.coverage))
+    return fail("coverage kernel '" + o.coverageKernel +
+                "' is not available on this machine (see --list-kernels)");
   PipelineState state;
   state.viewport = {0, 0, o.width, o.height};
   state.format = FixedPointFormat::withFractionBits(o.subpixelBits);
@@ -88,11 +100,11 @@ int run(const Options& o) {
     const std::string shading = o.shading.empty() ? "constant" : o.shading;
     Status s = Status::ok();
     if (shading == "constant")
-      s = drawTriangleList(fb, state, vertices, ConstantColorShader{}, stats);
+      s = drawTriangleList(fb, state, vertices, ConstantColorShader{}, stats, exec);
     else if (shading == "triangle-id")
-      s = drawTriangleList(fb, state, vertices, TriangleIdShader{}, stats);
+      s = drawTriangleList(fb, state, vertices, TriangleIdShader{}, stats, exec);
     else if (shading == "depth")
-      s = drawTriangleList(fb, state, vertices, DepthVisualizerShader{}, stats);
+      s = drawTriangleList(fb, state, vertices, DepthVisualizerShader{}, stats, exec);
     else
       return fail("shading '" + shading +
                   "' needs normals; triangle lists take constant, triangle-id or depth");
@@ -120,7 +132,7 @@ int run(const Options& o) {
     ShadingMode mode = ShadingMode::Lambert;
     if (!o.shading.empty() && !parseShadingMode(o.shading, mode))
       return fail("unknown shading '" + o.shading + "'");
-    if (Status s = renderScene(scene, fb, state, mode, stats); !s) return fail(s.message());
+    if (Status s = renderScene(scene, fb, state, mode, stats, exec); !s) return fail(s.message());
   }
 
   if (!o.output.empty())
@@ -161,6 +173,12 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"never", "less", "equal", "less-equal", "greater", "not-equal",
                              "greater-equal", "always"}));
   app.add_flag("--no-depth-write", o.noDepthWrite, "Leave the depth buffer unchanged");
+  app.add_option("--threads", o.threads, "Worker threads (0: all); outputs are identical for any")
+      ->check(CLI::Range(0, 1024));
+  app.add_option("--coverage-kernel", o.coverageKernel,
+                 "Coverage kernel: auto, scalar, or a SIMD target from --list-kernels; outputs are "
+                 "identical for any");
+  app.add_flag("--list-kernels", o.listKernels, "Print the coverage kernels this machine runs");
   app.add_option("--shading", o.shading,
                  "lambert, normals, depth, triangle-id or constant (default: lambert for meshes, "
                  "constant for triangle lists)");
@@ -174,6 +192,7 @@ int main(int argc, char** argv) {
   app.add_option("--fov", o.fov, "Vertical field of view in degrees")->check(CLI::Range(1.0, 179.0));
   app.add_option("--near", o.nearPlane, "Near plane distance")->check(CLI::PositiveNumber);
   app.add_option("--far", o.farPlane, "Far plane distance")->check(CLI::PositiveNumber);
+  for (CLI::Option* option : app.get_options()) option->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
