@@ -8,6 +8,9 @@ packages=(
   libglm-dev libopenimageio-dev libhwy-dev libtbb-dev
   libcli11-dev nlohmann-json3-dev libtinyobjloader-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  # The llvmpipe peer benchmarks (bench/llvmpipe_peer.h): glvnd's EGL and OpenGL headers and
+  # libraries, Mesa's EGL vendor library and its DRI drivers (swrast_dri.so holds llvmpipe).
+  libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
 )
 
 missing=()

@@ -1,0 +1,90 @@
+// One frame of each standard workload (workloads.h) on our pipeline at 1920x1080, in ms per frame,
+// and the memory-bandwidth floor that W3 cannot beat.
+#include <cstring>
+#include <string>
+
+#include <benchmark/benchmark.h>
+
+#include "bench/frame_counters.h"
+#include "bench/workloads.h"
+
+namespace rast::workloads {
+namespace {
+
+std::string bunnyPath() { return std::string(RASTER_SHARED_MESHES) + "/bunny.obj"; }
+
+// Renders frames of `geometry` with `renderFrame` (a renderW*Frame) and reports the last frame's
+// counters.
+template <class Geometry, class RenderFrame>
+void runFrames(benchmark::State& state, const Geometry& geometry, RenderFrame renderFrame) {
+  Framebuffer fb(kFrameWidth, kFrameHeight);
+  PipelineStatistics frame;
+  for (auto _ : state) {
+    frame = {};
+    if (Status s = renderFrame(fb, geometry, frame); !s) {
+      state.SkipWithError(s.message().c_str());
+      break;
+    }
+    benchmark::DoNotOptimize(fb.colorPlane().data());
+    benchmark::ClobberMemory();
+  }
+  bench::reportFrameCounts(state, {frame.inputTriangles, frame.samplesCovered,
+                                   frame.depthTestsPassed, frame.pixelShaderInvocations});
+}
+
+void litMeshFrames(benchmark::State& state, Status (*renderFrame)(Framebuffer&, const LitMeshScene&,
+                                                                  PipelineStatistics&)) {
+  LitMeshScene scene;
+  if (Status s = loadLitMeshScene(bunnyPath(), kFrameWidth, kFrameHeight, scene); !s) {
+    state.SkipWithError(s.message().c_str());
+    return;
+  }
+  runFrames(state, scene, renderFrame);
+}
+
+void BM_FrameW1(benchmark::State& state) { litMeshFrames(state, renderW1Frame); }
+
+void BM_FrameW2Tiny(benchmark::State& state) {
+  const WindowGeometry grid =
+      triangleGrid(double(state.range(0)), kFrameWidth, kFrameHeight, kTinyTriangleDepth);
+  runFrames(state, grid, renderW2Frame);
+}
+
+template <LayerOrder kOrder, LayerShape kShape>
+void BM_FrameW3(benchmark::State& state) {
+  runFrames(state, overdrawLayers(kFrameWidth, kFrameHeight, kOrder, kShape), renderW3Frame);
+}
+
+void BM_FrameW4(benchmark::State& state) { litMeshFrames(state, renderW4Frame); }
+
+// One write of W3's framebuffer bytes (RGBA8 colour and 32-bit depth): what any renderer that
+// writes every pixel once must at least spend.
+void BM_FrameMemsetFloor(benchmark::State& state) {
+  Framebuffer fb(kFrameWidth, kFrameHeight);
+  for (auto _ : state) {
+    std::memset(fb.colorPlane().data(), 0x11, fb.colorPlane().size() * sizeof(PackedColor));
+    std::memset(fb.depthPlane().data(), 0x22, fb.depthPlane().size() * sizeof(float));
+    benchmark::DoNotOptimize(fb.colorPlane().data());
+    benchmark::DoNotOptimize(fb.depthPlane().data());
+    benchmark::ClobberMemory();
+  }
+  state.SetBytesProcessed(int64_t(state.iterations()) * kFrameWidth * kFrameHeight * 8);
+}
+
+#define FRAME_BENCHMARK(...) BENCHMARK(__VA_ARGS__)->Unit(benchmark::kMillisecond)->UseRealTime()
+
+FRAME_BENCHMARK(BM_FrameW1);
+FRAME_BENCHMARK(BM_FrameW2Tiny)->ArgName("area")->Apply([](benchmark::internal::Benchmark* b) {
+  for (int area : kTinyTriangleAreas) b->Arg(area);
+});
+FRAME_BENCHMARK(BM_FrameW3<LayerOrder::FrontToBack, LayerShape::Quad>)->Name("BM_FrameW3FrontToBack");
+FRAME_BENCHMARK(BM_FrameW3<LayerOrder::BackToFront, LayerShape::Quad>)->Name("BM_FrameW3BackToFront");
+FRAME_BENCHMARK(BM_FrameW3<LayerOrder::FrontToBack, LayerShape::Tessellated>)
+    ->Name("BM_FrameW3TessFrontToBack");
+FRAME_BENCHMARK(BM_FrameW3<LayerOrder::BackToFront, LayerShape::Tessellated>)
+    ->Name("BM_FrameW3TessBackToFront");
+FRAME_BENCHMARK(BM_FrameW4);
+FRAME_BENCHMARK(BM_FrameMemsetFloor);
+
+}  // namespace
+}  // namespace rast::workloads
