@@ -19,9 +19,11 @@ template <class Geometry, class RenderFrame>
 void runFrames(benchmark::State& state, const Geometry& geometry, RenderFrame renderFrame) {
   Framebuffer fb(kFrameWidth, kFrameHeight);
   PipelineStatistics frame;
+  ExecutionOptions exec;
+  exec.threads = int(state.range(1));
   for (auto _ : state) {
     frame = {};
-    if (Status s = renderFrame(fb, geometry, frame); !s) {
+    if (Status s = renderFrame(fb, geometry, frame, exec); !s) {
       state.SkipWithError(s.message().c_str());
       break;
     }
@@ -32,8 +34,9 @@ void runFrames(benchmark::State& state, const Geometry& geometry, RenderFrame re
                                    frame.depthTestsPassed, frame.pixelShaderInvocations});
 }
 
-void litMeshFrames(benchmark::State& state, Status (*renderFrame)(Framebuffer&, const LitMeshScene&,
-                                                                  PipelineStatistics&)) {
+void litMeshFrames(benchmark::State& state,
+                   Status (*renderFrame)(Framebuffer&, const LitMeshScene&, PipelineStatistics&,
+                                         const ExecutionOptions&)) {
   LitMeshScene scene;
   if (Status s = loadLitMeshScene(bunnyPath(), kFrameWidth, kFrameHeight, scene); !s) {
     state.SkipWithError(s.message().c_str());
@@ -71,12 +74,24 @@ void BM_FrameMemsetFloor(benchmark::State& state) {
   state.SetBytesProcessed(int64_t(state.iterations()) * kFrameWidth * kFrameHeight * 8);
 }
 
-#define FRAME_BENCHMARK(...) BENCHMARK(__VA_ARGS__)->Unit(benchmark::kMillisecond)->UseRealTime()
+// Every frame benchmark at 1 and 2 threads (the second argument), the peer's settings.
+void withThreads(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"", "threads"});
+  for (int threads : {1, 2}) b->Args({0, threads});
+}
+
+#define FRAME_BENCHMARK(...) \
+  BENCHMARK(__VA_ARGS__)->Unit(benchmark::kMillisecond)->UseRealTime()->Apply(withThreads)
 
 FRAME_BENCHMARK(BM_FrameW1);
-FRAME_BENCHMARK(BM_FrameW2Tiny)->ArgName("area")->Apply([](benchmark::internal::Benchmark* b) {
-  for (int area : kTinyTriangleAreas) b->Arg(area);
-});
+BENCHMARK(BM_FrameW2Tiny)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->ArgNames({"area", "threads"})
+    ->Apply([](benchmark::internal::Benchmark* b) {
+      for (int area : kTinyTriangleAreas)
+        for (int threads : {1, 2}) b->Args({area, threads});
+    });
 FRAME_BENCHMARK(BM_FrameW3<LayerOrder::FrontToBack, LayerShape::Quad>)->Name("BM_FrameW3FrontToBack");
 FRAME_BENCHMARK(BM_FrameW3<LayerOrder::BackToFront, LayerShape::Quad>)->Name("BM_FrameW3BackToFront");
 FRAME_BENCHMARK(BM_FrameW3<LayerOrder::FrontToBack, LayerShape::Tessellated>)
@@ -84,7 +99,7 @@ FRAME_BENCHMARK(BM_FrameW3<LayerOrder::FrontToBack, LayerShape::Tessellated>)
 FRAME_BENCHMARK(BM_FrameW3<LayerOrder::BackToFront, LayerShape::Tessellated>)
     ->Name("BM_FrameW3TessBackToFront");
 FRAME_BENCHMARK(BM_FrameW4);
-FRAME_BENCHMARK(BM_FrameMemsetFloor);
+BENCHMARK(BM_FrameMemsetFloor)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace rast::workloads

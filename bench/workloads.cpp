@@ -39,7 +39,7 @@ void appendQuad(int width, int height, float depth, WindowGeometry& out) {
 }
 
 Status renderLitMeshFrame(Framebuffer& fb, const LitMeshScene& scene, bool colorWrite,
-                          PipelineStatistics& stats) {
+                          PipelineStatistics& stats, const ExecutionOptions& exec) {
   PipelineState state = workloadState(fb.width(), fb.height(), PositionSpace::Clip);
   state.colorWrite = colorWrite;
   const WorldNormalVertexShader vs{glm::mat4(1.0f), scene.viewProjection};
@@ -48,14 +48,14 @@ Status renderLitMeshFrame(Framebuffer& fb, const LitMeshScene& scene, bool color
   return draw(fb, state,
               DrawCall<WorldNormalVertexShader, W1LambertShader>{scene.mesh.vertices,
                                                                  scene.mesh.indices, vs, ps},
-              stats);
+              stats, exec);
 }
 
 Status renderFlatFrame(Framebuffer& fb, const WindowGeometry& geometry,
-                       PipelineStatistics& stats) {
+                       PipelineStatistics& stats, const ExecutionOptions& exec) {
   fb.clear(kClearColor, kClearDepth);
   return drawFlatGeometry(fb, workloadState(fb.width(), fb.height(), PositionSpace::Window),
-                          geometry, stats);
+                          geometry, stats, exec);
 }
 
 }  // namespace
@@ -121,29 +121,34 @@ WindowGeometry overdrawLayers(int width, int height, LayerOrder order, LayerShap
 }
 
 Status drawFlatGeometry(Framebuffer& fb, const PipelineState& state,
-                        const WindowGeometry& geometry, PipelineStatistics& stats) {
+                        const WindowGeometry& geometry, PipelineStatistics& stats,
+                        const ExecutionOptions& exec) {
   const WindowSpaceVertexShader vs;
   const ConstantColorShader ps{kFlatColor};
   return draw(fb, state,
               DrawCall<WindowSpaceVertexShader, ConstantColorShader>{geometry.vertices,
                                                                      geometry.indices, vs, ps},
-              stats);
+              stats, exec);
 }
 
-Status renderW1Frame(Framebuffer& fb, const LitMeshScene& scene, PipelineStatistics& stats) {
-  return renderLitMeshFrame(fb, scene, true, stats);
+Status renderW1Frame(Framebuffer& fb, const LitMeshScene& scene, PipelineStatistics& stats,
+                     const ExecutionOptions& exec) {
+  return renderLitMeshFrame(fb, scene, true, stats, exec);
 }
 
-Status renderW2Frame(Framebuffer& fb, const WindowGeometry& grid, PipelineStatistics& stats) {
-  return renderFlatFrame(fb, grid, stats);
+Status renderW2Frame(Framebuffer& fb, const WindowGeometry& grid, PipelineStatistics& stats,
+                     const ExecutionOptions& exec) {
+  return renderFlatFrame(fb, grid, stats, exec);
 }
 
-Status renderW3Frame(Framebuffer& fb, const WindowGeometry& layers, PipelineStatistics& stats) {
-  return renderFlatFrame(fb, layers, stats);
+Status renderW3Frame(Framebuffer& fb, const WindowGeometry& layers, PipelineStatistics& stats,
+                     const ExecutionOptions& exec) {
+  return renderFlatFrame(fb, layers, stats, exec);
 }
 
-Status renderW4Frame(Framebuffer& fb, const LitMeshScene& scene, PipelineStatistics& stats) {
-  return renderLitMeshFrame(fb, scene, false, stats);
+Status renderW4Frame(Framebuffer& fb, const LitMeshScene& scene, PipelineStatistics& stats,
+                     const ExecutionOptions& exec) {
+  return renderLitMeshFrame(fb, scene, false, stats, exec);
 }
 
 }  // namespace rast::workloads

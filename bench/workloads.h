@@ -11,6 +11,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "pipeline/execution.h"
 #include "pipeline/framebuffer.h"
 #include "pipeline/state.h"
 #include "pipeline/statistics.h"
@@ -93,14 +94,19 @@ WindowGeometry overdrawLayers(int width, int height, LayerOrder order, LayerShap
 // ---- One frame on our pipeline: clear colour and depth, draw; the frame's counters in `stats`.
 // `fb` gives the frame size; the geometry must have been made for that size.
 
-Status renderW1Frame(Framebuffer& fb, const LitMeshScene& scene, PipelineStatistics& stats);
-Status renderW2Frame(Framebuffer& fb, const WindowGeometry& grid, PipelineStatistics& stats);
-Status renderW3Frame(Framebuffer& fb, const WindowGeometry& layers, PipelineStatistics& stats);
+Status renderW1Frame(Framebuffer& fb, const LitMeshScene& scene, PipelineStatistics& stats,
+                     const ExecutionOptions& exec = {});
+Status renderW2Frame(Framebuffer& fb, const WindowGeometry& grid, PipelineStatistics& stats,
+                     const ExecutionOptions& exec = {});
+Status renderW3Frame(Framebuffer& fb, const WindowGeometry& layers, PipelineStatistics& stats,
+                     const ExecutionOptions& exec = {});
 // W1 with colour writes off.
-Status renderW4Frame(Framebuffer& fb, const LitMeshScene& scene, PipelineStatistics& stats);
+Status renderW4Frame(Framebuffer& fb, const LitMeshScene& scene, PipelineStatistics& stats,
+                     const ExecutionOptions& exec = {});
 
 // The draw of W2 and W3 alone (no clear) with any state, for checks with other depth compares.
 Status drawFlatGeometry(Framebuffer& fb, const PipelineState& state,
-                        const WindowGeometry& geometry, PipelineStatistics& stats);
+                        const WindowGeometry& geometry, PipelineStatistics& stats,
+                        const ExecutionOptions& exec = {});
 
 }  // namespace rast::workloads

@@ -9,7 +9,7 @@ TileBins::TileBins(int widthPixels, int heightPixels)
 
 void TileBins::addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
                            const PixelRect& bounds, FixedPointFormat format,
-                           std::vector<Entry>& out, PipelineStatistics& stats) const {
+                           ScratchVector<Entry>& out, PipelineStatistics& stats) const {
   const int tx0 = bounds.x0 >> kTileShift, tx1 = (bounds.x1 - 1) >> kTileShift;
   const int ty0 = bounds.y0 >> kTileShift, ty1 = (bounds.y1 - 1) >> kTileShift;
   if (tx0 == tx1 && ty0 == ty1) {
@@ -28,9 +28,9 @@ void TileBins::addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>&
   }
 }
 
-void TileBins::sortByTile(const std::vector<std::vector<Entry>>& chunks) {
+void TileBins::sortByTile(const std::vector<ScratchVector<Entry>>& chunks) {
   const size_t tiles = size_t(tileCount());
-  std::vector<uint32_t> cursor(chunks.size() * tiles, 0);  // per (chunk, tile): count, then slot
+  ScratchVector<uint32_t> cursor(chunks.size() * tiles, 0);  // per (chunk, tile): count, then slot
   tbb::parallel_for(size_t{0}, chunks.size(), [&](size_t c) {
     for (const Entry& e : chunks[c]) ++cursor[c * tiles + e.tile];
   });

@@ -34,7 +34,7 @@ class TileBins {
              PipelineStatistics& stats) {
     // At most 64 chunks: the counting sort keeps a count per (chunk, tile).
     const size_t chunkSize = std::max<size_t>(1024, (count + 63) / 64);
-    std::vector<std::vector<Entry>> entries(chunkCount(count, chunkSize));
+    std::vector<ScratchVector<Entry>> entries(chunkCount(count, chunkSize));
     std::vector<PipelineStatistics> chunkStats(entries.size());
     forEachChunk(count, chunkSize, [&](size_t c, size_t begin, size_t end) {
       for (size_t i = begin; i < end; ++i) {
@@ -53,13 +53,13 @@ class TileBins {
   };
   // Appends the tiles of `bounds` that the corner test does not reject.
   void addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
-                   const PixelRect& bounds, FixedPointFormat format, std::vector<Entry>& out,
+                   const PixelRect& bounds, FixedPointFormat format, ScratchVector<Entry>& out,
                    PipelineStatistics& stats) const;
-  void sortByTile(const std::vector<std::vector<Entry>>& chunks);
+  void sortByTile(const std::vector<ScratchVector<Entry>>& chunks);
 
   int tilesX_, tilesY_;
-  std::vector<uint32_t> offsets_;    // bin t is triangles_[offsets_[t], offsets_[t + 1])
-  std::vector<uint32_t> triangles_;
+  ScratchVector<uint32_t> offsets_;    // bin t is triangles_[offsets_[t], offsets_[t + 1])
+  ScratchVector<uint32_t> triangles_;
 };
 
 }  // namespace rast

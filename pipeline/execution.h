@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <tbb/parallel_for.h>
+#include <tbb/scalable_allocator.h>
 
 #include "rasterizer/coverage_kernels.h"
 
@@ -15,6 +16,11 @@ struct ExecutionOptions {
   int threads = 0;  // worker threads for a draw; 0: every hardware thread
   CoverageKernel coverage = bestCoverageKernel();
 };
+
+// Per-draw temporaries. oneTBB's scalable allocator keeps freed large blocks for reuse, so a
+// frame does not page-fault its way through memory the previous frame just returned to the OS.
+template <class T>
+using ScratchVector = std::vector<T, tbb::scalable_allocator<T>>;
 
 // Calls f(chunk, begin, end) for consecutive chunks of [0, count) of `chunkSize` items, in
 // parallel. Chunk boundaries depend only on count and chunkSize, never on the thread count.

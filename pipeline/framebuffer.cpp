@@ -9,12 +9,6 @@
 namespace rast {
 namespace {
 
-uint32_t toByte(float v) {
-  // Written so that NaN fails both comparisons and becomes 0: a NaN colour never reaches a cast.
-  const float clamped = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
-  return uint32_t(clamped * 255.0f + 0.5f);
-}
-
 Status writeImage(const std::string& path, int width, int height, int channels,
                   OIIO::TypeDesc type, const void* pixels) {
   auto out = OIIO::ImageOutput::create(path);
@@ -26,10 +20,6 @@ Status writeImage(const std::string& path, int width, int height, int channels,
 }
 
 }  // namespace
-
-PackedColor packColor(glm::vec4 c) {
-  return toByte(c.r) | (toByte(c.g) << 8) | (toByte(c.b) << 16) | (toByte(c.a) << 24);
-}
 
 glm::vec4 unpackColor(PackedColor c) {
   return glm::vec4(float(c & 255), float((c >> 8) & 255), float((c >> 16) & 255),

@@ -15,7 +15,15 @@ namespace rast {
 // RGBA8 packed with red in the low byte (the byte order of an RGBA image in memory).
 using PackedColor = uint32_t;
 
-PackedColor packColor(glm::vec4 rgba);  // clamps to [0, 1] (NaN -> 0), rounds to nearest
+// Clamps each channel to [0, 1], written so that NaN fails both comparisons and becomes 0 (a NaN
+// never reaches the integer conversion), and rounds to the nearest of 0..255.
+inline uint32_t colorByte(float v) {
+  const float clamped = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+  return uint32_t(clamped * 255.0f + 0.5f);
+}
+inline PackedColor packColor(glm::vec4 c) {
+  return colorByte(c.r) | (colorByte(c.g) << 8) | (colorByte(c.b) << 16) | (colorByte(c.a) << 24);
+}
 glm::vec4 unpackColor(PackedColor c);
 
 class Framebuffer {

@@ -22,9 +22,9 @@ struct VertexClipCodes {
 };
 
 template <int N>
-std::vector<VertexClipCodes> computeClipCodes(const std::vector<ShadedVertex<N>>& vertices,
+ScratchVector<VertexClipCodes> computeClipCodes(const ScratchVector<ShadedVertex<N>>& vertices,
                                               const ClipPlanes& planes) {
-  std::vector<VertexClipCodes> codes(vertices.size());
+  ScratchVector<VertexClipCodes> codes(vertices.size());
   forEachChunk(vertices.size(), 4096, [&](size_t, size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
       const glm::vec4& p = vertices[i].position;
@@ -39,9 +39,9 @@ std::vector<VertexClipCodes> computeClipCodes(const std::vector<ShadedVertex<N>>
 
 // Clips and sets up triangles [begin, end) of the draw, appending to `out` in order.
 template <int N>
-void clipAndSetup(const TransformedVertices<N>& in, const std::vector<VertexClipCodes>& codes,
+void clipAndSetup(const TransformedVertices<N>& in, const ScratchVector<VertexClipCodes>& codes,
                   uint32_t begin, uint32_t end, const SetupContext& ctx,
-                  const ClipPlanes& planes, std::vector<SetupTriangle<N>>& out,
+                  const ClipPlanes& planes, ScratchVector<SetupTriangle<N>>& out,
                   PipelineStatistics& stats) {
   stats.inputTriangles += end - begin;
   out.reserve(out.size() + (end - begin));
@@ -82,13 +82,13 @@ void clipAndSetup(const TransformedVertices<N>& in, const std::vector<VertexClip
 // joined in submission order.
 template <int N>
 void clipAndSetupAll(const TransformedVertices<N>& in, const SetupContext& ctx,
-                     const ClipPlanes& planes, std::vector<SetupTriangle<N>>& out,
+                     const ClipPlanes& planes, ScratchVector<SetupTriangle<N>>& out,
                      PipelineStatistics& stats) {
-  const std::vector<VertexClipCodes> codes = computeClipCodes(in.vertices, planes);
+  const ScratchVector<VertexClipCodes> codes = computeClipCodes(in.vertices, planes);
   constexpr size_t kChunk = 4096;
   const size_t triangleCount = in.indices.size() / 3;
   const size_t chunks = chunkCount(triangleCount, kChunk);
-  std::vector<std::vector<SetupTriangle<N>>> parts(chunks);
+  std::vector<ScratchVector<SetupTriangle<N>>> parts(chunks);
   std::vector<PipelineStatistics> partStats(chunks);
   forEachChunk(triangleCount, kChunk, [&](size_t c, size_t begin, size_t end) {
     clipAndSetup(in, codes, uint32_t(begin), uint32_t(end), ctx, planes, parts[c], partStats[c]);

@@ -24,7 +24,7 @@ namespace rast {
 // What one task needs to run a tile; the same for every tile of a draw.
 template <PixelShader PS, int N = PS::kVaryings>
 struct TileContext {
-  const std::vector<SetupTriangle<N>>& triangles;
+  const ScratchVector<SetupTriangle<N>>& triangles;
   const PS& shader;
   FixedPointFormat format;
   CoverageKernel kernel;
@@ -233,7 +233,7 @@ void withFlag(bool flag, F&& f) {
 // within a tile triangles merge in submission order; statistics are sums, the same in any order.
 template <PixelShader PS, int N = PS::kVaryings>
 void runBackEnd(Framebuffer& fb, const PipelineState& state, const TileBins& bins,
-                const std::vector<SetupTriangle<N>>& triangles, const PS& shader,
+                const ScratchVector<SetupTriangle<N>>& triangles, const PS& shader,
                 const CoverageKernel& kernel, PipelineStatistics& stats) {
   const TileContext<PS, N> ctx{triangles,
                                shader,

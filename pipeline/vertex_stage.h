@@ -14,8 +14,8 @@ namespace rast {
 
 template <int N>
 struct TransformedVertices {
-  std::vector<ShadedVertex<N>> vertices;  // in order of first use
-  std::vector<uint32_t> indices;          // the draw's indices, renumbered into `vertices`
+  ScratchVector<ShadedVertex<N>> vertices;  // in order of first use
+  ScratchVector<uint32_t> indices;          // the draw's indices, renumbered into `vertices`
 };
 
 // Indices must already be validated against vertices.size(). Keeps the first N varyings: the
@@ -27,8 +27,8 @@ void runVertexStage(const VS& shader, std::span<const typename VS::Vertex> verti
   static_assert(N <= VS::kVaryings, "the pixel shader reads more varyings than the vertex shader writes");
   // Numbering unique indices in order of first use is sequential and cheap; shading is not.
   constexpr uint32_t kNotSeen = ~uint32_t{0};
-  std::vector<uint32_t> slot(vertices.size(), kNotSeen);
-  std::vector<uint32_t> unique;
+  ScratchVector<uint32_t> slot(vertices.size(), kNotSeen);
+  ScratchVector<uint32_t> unique;
   out.indices.resize(indices.size());
   for (size_t i = 0; i < indices.size(); ++i) {
     uint32_t& s = slot[indices[i]];
