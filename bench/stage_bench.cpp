@@ -57,7 +57,7 @@ std::vector<SetupTriangle<3>> setUp(const std::vector<ShadedVertex<3>>& v, Fixed
   PipelineStatistics stats;
   SetupTriangle<3> t;
   for (size_t i = 0; i + 2 < v.size(); i += 3)
-    if (setupTriangle<3>({&v[i], &v[i + 1], &v[i + 2]}, ctx, uint32_t(i / 3), t, stats))
+    if (setupTriangle<3, ShadedVertex<3>>({&v[i], &v[i + 1], &v[i + 2]}, ctx, uint32_t(i / 3), t, stats))
       out.push_back(t);
   return out;
 }
@@ -109,7 +109,7 @@ void BM_SetupTriangle(benchmark::State& state) {
   PipelineStatistics stats;
   for (auto _ : state) {
     for (size_t i = 0; i < v.size(); i += 3) {
-      benchmark::DoNotOptimize(setupTriangle<3>({&v[i], &v[i + 1], &v[i + 2]}, ctx, 0, t, stats));
+      benchmark::DoNotOptimize(setupTriangle<3, ShadedVertex<3>>({&v[i], &v[i + 1], &v[i + 2]}, ctx, 0, t, stats));
     }
   }
   state.SetLabel(f.name());

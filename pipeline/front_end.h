@@ -27,7 +27,7 @@ ScratchVector<VertexClipCodes> computeClipCodes(const ScratchVector<ShadedVertex
   ScratchVector<VertexClipCodes> codes(vertices.size());
   forEachChunk(vertices.size(), 4096, [&](size_t, size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
-      const glm::vec4& p = vertices[i].position;
+      const glm::dvec4 p(vertices[i].position);
       const bool finite =
           std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.w);
       codes[i] = {finite, finite ? outsideMask(planes.reject, p) : 0u,
@@ -63,7 +63,7 @@ void clipAndSetup(const TransformedVertices<N>& in, const ScratchVector<VertexCl
     const unsigned crossed = c0.clip | c1.clip | c2.clip;
     if (!crossed) {
       ++stats.clipOutputTriangles;
-      if (setupTriangle(tri, ctx, t, triangle, stats)) out.push_back(triangle);
+      if (setupTriangle<N>(tri, ctx, t, triangle, stats)) out.push_back(triangle);
       continue;
     }
     ++stats.clipClipped;
@@ -71,9 +71,9 @@ void clipAndSetup(const TransformedVertices<N>& in, const ScratchVector<VertexCl
     // The clipped polygon is convex and keeps the winding: a fan from its first vertex.
     for (int k = 1; k + 1 < polygon.count; ++k) {
       ++stats.clipOutputTriangles;
-      const std::array<const ShadedVertex<N>*, 3> part = {
+      const std::array<const ClippedVertex<N>*, 3> part = {
           &polygon.vertices[0], &polygon.vertices[k], &polygon.vertices[k + 1]};
-      if (setupTriangle(part, ctx, t, triangle, stats)) out.push_back(triangle);
+      if (setupTriangle<N>(part, ctx, t, triangle, stats)) out.push_back(triangle);
     }
   }
 }

@@ -38,12 +38,13 @@ struct SetupContext {
 
 // Sets up one triangle whose vertices lie inside the guard band (the clipper made sure). Returns
 // false, having counted why, when it draws nothing.
-template <int N>
-bool setupTriangle(const std::array<const ShadedVertex<N>*, 3>& v, const SetupContext& ctx,
+// V: ShadedVertex<N> (unclipped) or ClippedVertex<N>, with `position` and `varyings`.
+template <int N, class V>
+bool setupTriangle(const std::array<const V*, 3>& v, const SetupContext& ctx,
                    uint32_t primitiveId, SetupTriangle<N>& out, PipelineStatistics& stats) {
   std::array<WindowPosition, 3> w;
   for (int i = 0; i < 3; ++i) {
-    w[i] = ctx.mapping.toWindow(v[i]->position);
+    w[i] = ctx.mapping.toWindow(glm::dvec4(v[i]->position));
     if (!std::isfinite(w[i].x) || !std::isfinite(w[i].y) || !std::isfinite(w[i].z) ||
         !std::isfinite(w[i].invW)) {
       ++stats.clipDegenerate;

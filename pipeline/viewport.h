@@ -9,10 +9,12 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include "pipeline/state.h"
+#include "rasterizer/double_double.h"
 
 namespace rast {
 
@@ -29,8 +31,8 @@ struct ScreenMapping {
 
   static ScreenMapping forState(const PipelineState& state);
 
-  WindowPosition toWindow(const glm::vec4& p) const {
-    const double invW = 1.0 / double(p.w);
+  WindowPosition toWindow(const glm::dvec4& p) const {
+    const double invW = 1.0 / p.w;
     return {double(p.x) * invW * scale.x + offset.x, double(p.y) * invW * scale.y + offset.y,
             double(p.z) * invW * scale.z + offset.z, invW};
   }
@@ -47,16 +49,24 @@ struct ClipPlanes {
   std::array<ClipPlane, 6> reject;
   // Clipping: w >= 0, depth 0 (the near plane), depth 1 (the far plane), and the four sides of
   // the guard band, beyond which fixed point would overflow (fixed_point.h). Triangles are cut
-  // here, so every vertex that reaches snapping lies in the guard band.
+  // here, so every vertex that reaches snapping lies in the guard band. Each plane bounds one
+  // window axis (or w), which the clipper relies on to place new vertices exactly on it.
   static constexpr int kClipPlaneCount = 7;
   std::array<ClipPlane, kClipPlaneCount> clip;
 
   static ClipPlanes forState(const PipelineState& state, const ScreenMapping& mapping);
 };
 
-inline double signedDistance(const ClipPlane& plane, const glm::vec4& p) {
-  return plane.x * double(p.x) + plane.y * double(p.y) + plane.z * double(p.z) +
-         plane.w * double(p.w);
+// dot(plane, p) in double-double (about 106 bits): a vertex far outside a plane has terms that
+// nearly cancel, and the clipper needs the small remainder to place its new vertex.
+inline DoubleDouble signedDistanceExact(const ClipPlane& plane, const glm::dvec4& p) {
+  DoubleDouble sum = DoubleDouble::product(plane[0], p[0]);
+  for (int i = 1; i < 4; ++i) sum = sum + DoubleDouble::product(plane[i], p[i]);
+  return sum;
+}
+
+inline double signedDistance(const ClipPlane& plane, const glm::dvec4& p) {
+  return signedDistanceExact(plane, p).hi;
 }
 
 }  // namespace rast

@@ -213,7 +213,13 @@ V3 makeV3(const glm::dvec4& p) {
   return v;
 }
 
-bool bitEqual(const V3& a, const V3& b) { return std::memcmp(&a, &b, sizeof(V3)) == 0; }
+using C3 = ClippedVertex<kVaryingCount>;
+// Bit equality: of two clipper outputs, or of a clipper output and the input vertex it kept.
+bool bitEqual(const C3& a, const C3& b) {
+  return std::memcmp(&a.position, &b.position, sizeof(a.position)) == 0 &&
+         std::memcmp(&a.varyings, &b.varyings, sizeof(a.varyings)) == 0;
+}
+bool bitEqual(const C3& a, const V3& b) { return bitEqual(a, C3{glm::dvec4(b.position), b.varyings}); }
 
 // An orthographic-like triangle (w > 0 everywhere) with vertex k behind the near plane
 // (z < -w) when bit k of `behindMask` is set.
@@ -251,7 +257,7 @@ TEST_P(ClipNearPlane, PolygonVerticesOnPlaneWithInterpolatedVaryings) {
 
     int created = 0;
     for (int i = 0; i < poly.count; ++i) {
-      const V3& v = poly.vertices[i];
+      const C3& v = poly.vertices[i];
       bool original = false;
       for (const V3& t : tri) original |= bitEqual(v, t);
       if (original) {
@@ -392,8 +398,8 @@ TEST(ClipNearPlaneTest, VerticesBehindTheEye) {
   }
 }
 
-// Two triangles sharing an edge that crosses the near plane: the crossing point is computed from
-// the edge in a canonical order, so both polygons get the same vertex and no sample along the
+// Two triangles sharing an edge that crosses the near plane: the crossing point is a symmetric
+// function of the edge's endpoints, so both polygons get the same vertex and no sample along the
 // shared edge is missed or hit twice.
 TEST(ClipSharedEdge, SameCrossingVertexInBothPolygons) {
   const PipelineState state = countingState({0, 0, 64, 64}, FixedPointFormat::d24_4());
