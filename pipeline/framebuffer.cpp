@@ -1,7 +1,10 @@
 #include "pipeline/framebuffer.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstring>
+#include <fstream>
 #include <stdexcept>
 
 #include <OpenImageIO/imageio.h>
@@ -17,6 +20,24 @@ Status writeImage(const std::string& path, int width, int height, int channels,
   if (!out->open(path, spec) || !out->write_image(type, pixels) || !out->close())
     return Status::error("cannot write '" + path + "': " + out->geterror());
   return Status::ok();
+}
+
+// Binary PGM with 16-bit samples, most significant byte first (the format's rule). Written here
+// because OpenImageIO 2.4's PNM writer stores 16-bit data as 8-bit or bit-packed samples.
+Status writePgm16(const std::string& path, int width, int height, const std::vector<uint16_t>& v) {
+  std::ofstream out(path, std::ios::binary);
+  out << "P5\n" << width << " " << height << "\n65535\n";
+  for (uint16_t s : v) out.put(char(s >> 8)).put(char(s & 255));
+  if (!out.flush()) return Status::error("cannot write '" + path + "'");
+  return Status::ok();
+}
+
+bool hasExtension(const std::string& path, const char* ext) {
+  const size_t n = std::strlen(ext);
+  if (path.size() < n) return false;
+  for (size_t i = 0; i < n; ++i)
+    if (std::tolower(static_cast<unsigned char>(path[path.size() - n + i])) != ext[i]) return false;
+  return true;
 }
 
 }  // namespace
@@ -60,7 +81,9 @@ Status writeCountImage(const Framebuffer& fb, const std::string& path) {
     saturated |= c > 65535;
     return uint16_t(std::min<uint32_t>(c, 65535));
   });
-  Status s = writeImage(path, fb.width(), fb.height(), 1, OIIO::TypeDesc::UINT16, grey.data());
+  Status s = hasExtension(path, ".pgm")
+                 ? writePgm16(path, fb.width(), fb.height(), grey)
+                 : writeImage(path, fb.width(), fb.height(), 1, OIIO::TypeDesc::UINT16, grey.data());
   if (s && saturated) return Status::error("count image '" + path + "' saturated at 65535");
   return s;
 }

@@ -59,7 +59,7 @@ class Framebuffer {
 
 // Image output through OpenImageIO; the format follows the file extension.
 Status writeColorImage(const Framebuffer& fb, const std::string& path);  // .png, .exr, .tif ...
-Status writeDepthImage(const Framebuffer& fb, const std::string& path);  // .exr or .pfm: float
+Status writeDepthImage(const Framebuffer& fb, const std::string& path);  // .exr (32-bit float)
 // 16-bit grey (.png, .pgm): counts above 65535 saturate, and the call says so in its message.
 Status writeCountImage(const Framebuffer& fb, const std::string& path);
 

@@ -211,6 +211,26 @@ TEST_F(RasterizeTool, OverlapCountsLayers) {
     }
 }
 
+// 300 copies of one square (two triangles each): counts above 255 survive in the binary PGM
+// count image (16-bit samples; the PNG path is read back as 16-bit in the tests above).
+TEST_F(RasterizeTool, CountsAboveEightBitsSurviveInPgm) {
+  std::string list;
+  for (int i = 0; i < 300; ++i) list += "0 0 0.5  4 0 0.5  4 4 0.5\n0 0 0.5  4 4 0.5  0 4 0.5\n";
+  write("stack.txt", list);
+  const RunResult r = run({path("stack.txt").string(), "--width", "8", "--height", "8",
+                           "--depth-compare", "always", "--count-output",
+                           path("count.pgm").string()});
+  ASSERT_TRUE(r.exited);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(readFile(path("count.pgm")).rfind("P5\n8 8\n65535\n", 0), 0u);
+  int width = 0, height = 0;
+  const std::vector<uint16_t> counts = readGrey16(path("count.pgm"), width, height);
+  ASSERT_EQ(counts.size(), 64u);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x)
+      EXPECT_EQ(counts[size_t(y) * 8 + x], x < 4 && y < 4 ? 300 : 0) << "pixel " << x << ", " << y;
+}
+
 // (A missing OBJ takes loadObj's path: Mesh.LoadObjMissingFile. Every run of the tool costs
 // ~0.4 s of dynamic loading, OpenImageIO's dependencies, so runs are not duplicated here.)
 TEST_F(RasterizeTool, MissingFile) {

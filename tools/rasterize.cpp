@@ -183,7 +183,7 @@ int main(int argc, char** argv) {
                  "lambert, normals, depth, triangle-id or constant (default: lambert for meshes, "
                  "constant for triangle lists)");
   app.add_option("-o,--output", o.output, "Colour image (PNG)");
-  app.add_option("--depth-output", o.depthOutput, "Depth image (32-bit float EXR or PFM)");
+  app.add_option("--depth-output", o.depthOutput, "Depth image (32-bit float EXR)");
   app.add_option("--count-output", o.countOutput,
                  "Per-pixel count of written fragments (16-bit PNG or PGM)");
   app.add_option("--stats", o.statsOutput, "Pipeline statistics (JSON)");
