@@ -34,9 +34,9 @@ struct DepthState {
   // Test before the pixel shader (skipping shading of hidden fragments). Off moves the test
   // after shading, to measure what early depth saves; results are identical either way.
   bool early = true;
-
-  bool enabled() const { return compare != CompareOp::Always || write; }
 };
+// With compare Always no test runs: merge.depth_passed and merge.depth_failed count nothing (with
+// Never every covered sample fails). Always with writes off costs no depth access at all.
 
 struct PipelineState {
   Viewport viewport;
