@@ -13,24 +13,24 @@ bench=${2:-build/bench/rast_bench}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
-# label;our benchmark;the peer's, with @ standing for its thread count
+# label;our benchmark;the peer's, with @ standing for the thread count of both
 workloads=(
-  "W1;BM_FrameW1/;BM_PeerW1/threads:@/"
-  "tiny-1;BM_FrameW2Tiny/area:1/;BM_PeerW2Tiny/threads:@/area:1/"
-  "tiny-10;BM_FrameW2Tiny/area:10/;BM_PeerW2Tiny/threads:@/area:10/"
-  "tiny-100;BM_FrameW2Tiny/area:100/;BM_PeerW2Tiny/threads:@/area:100/"
-  "tiny-1000;BM_FrameW2Tiny/area:1000/;BM_PeerW2Tiny/threads:@/area:1000/"
-  "W3 front-to-back;BM_FrameW3FrontToBack/;BM_PeerW3FrontToBack/threads:@/"
-  "W3 back-to-front;BM_FrameW3BackToFront/;BM_PeerW3BackToFront/threads:@/"
-  "W3 tess front-to-back;BM_FrameW3TessFrontToBack/;BM_PeerW3TessFrontToBack/threads:@/"
-  "W3 tess back-to-front;BM_FrameW3TessBackToFront/;BM_PeerW3TessBackToFront/threads:@/"
-  "W4;BM_FrameW4/;BM_PeerW4/threads:@/"
+  "W1;BM_FrameW1/0/threads:@/;BM_PeerW1/threads:@/"
+  "tiny-1;BM_FrameW2Tiny/area:1/threads:@/;BM_PeerW2Tiny/threads:@/area:1/"
+  "tiny-10;BM_FrameW2Tiny/area:10/threads:@/;BM_PeerW2Tiny/threads:@/area:10/"
+  "tiny-100;BM_FrameW2Tiny/area:100/threads:@/;BM_PeerW2Tiny/threads:@/area:100/"
+  "tiny-1000;BM_FrameW2Tiny/area:1000/threads:@/;BM_PeerW2Tiny/threads:@/area:1000/"
+  "W3 front-to-back;BM_FrameW3FrontToBack/0/threads:@/;BM_PeerW3FrontToBack/threads:@/"
+  "W3 back-to-front;BM_FrameW3BackToFront/0/threads:@/;BM_PeerW3BackToFront/threads:@/"
+  "W3 tess front-to-back;BM_FrameW3TessFrontToBack/0/threads:@/;BM_PeerW3TessFrontToBack/threads:@/"
+  "W3 tess back-to-front;BM_FrameW3TessBackToFront/0/threads:@/;BM_PeerW3TessBackToFront/threads:@/"
+  "W4;BM_FrameW4/0/threads:@/;BM_PeerW4/threads:@/"
 )
 
 for ((r = 0; r < rounds; ++r)); do
   for ((w = 0; w < ${#workloads[@]}; ++w)); do
     IFS=';' read -r _ ours peer <<<"${workloads[w]}"
-    "$bench" --benchmark_filter="^(${ours}|${peer/@/[12]})" \
+    "$bench" --benchmark_filter="^(${ours/@/[12]}|${peer/@/[12]})" \
       --benchmark_out="$out/r$r-w$w.json" --benchmark_out_format=json >/dev/null 2>"$out/log"
     grep -i "skipped" "$out/log" >&2 || true
   done
@@ -49,9 +49,13 @@ def median(prefix):
     runs = [t for name, ts in times.items() if name.startswith(prefix) for t in ts]
     return statistics.median(runs) if runs else float("nan")
 
-print(f"{'workload':24}{'ours ms':>10}{'peer 1t':>10}{'peer 2t':>10}{'ours/1t':>10}{'ours/2t':>10}")
+# Ratios are our time / the peer's at the same thread count: below 1 we are faster.
+print(f"{'workload':24}{'ours 1t':>9}{'peer 1t':>9}{'ratio':>7}{'ours 2t':>9}{'peer 2t':>9}{'ratio':>7}")
 for w in workloads:
     label, ours, peer = w.split(";")
-    o, p1, p2 = median(ours), median(peer.replace("@", "1")), median(peer.replace("@", "2"))
-    print(f"{label:24}{o:10.2f}{p1:10.2f}{p2:10.2f}{o / p1:10.2f}{o / p2:10.2f}")
+    row = f"{label:24}"
+    for t in ("1", "2"):
+        o, p = median(ours.replace("@", t)), median(peer.replace("@", t))
+        row += f"{o:9.2f}{p:9.2f}{o / p:7.2f}"
+    print(row)
 PY
