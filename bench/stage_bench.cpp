@@ -200,7 +200,7 @@ void BM_MergeConstantColor(benchmark::State& state) {
   }();
   Framebuffer fb(8, 8);
   const ConstantColorShader ps;
-  using Merge = MergeConfig<CompareOp::Less, true, true, true, false>;
+  using Merge = MergeConfig<CompareOp::Less, true, true, true>;
   const MergeTarget target{fb.colorPlane().data(), fb.depthPlane().data(), nullptr};
   PipelineStatistics stats;
   for (auto _ : state) {

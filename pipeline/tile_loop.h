@@ -119,7 +119,7 @@ void shadeAndMerge(const SetupTriangle<N>& t, int px, int py, const PS& shader,
   }
   if constexpr (Merge::kDepthWrite) target.depth[pixel] = z;
   if constexpr (Merge::kColorWrite) target.color[pixel] = packColor(result.color);
-  if constexpr (Merge::kCountFragments) ++target.counts[pixel];
+  if (target.counts) ++target.counts[pixel];
   ++stats.fragmentsWritten;
 }
 
@@ -247,20 +247,17 @@ void runBackEnd(Framebuffer& fb, const PipelineState& state, const TileBins& bin
     detail::withFlag(state.depth.write, [&](auto depthWrite) {
       detail::withFlag(state.colorWrite, [&](auto colorWrite) {
         detail::withFlag(state.depth.early, [&](auto early) {
-          detail::withFlag(fb.hasCounts(), [&](auto count) {
-            using Merge = MergeConfig<decltype(op)::value, decltype(depthWrite)::value,
-                                      decltype(colorWrite)::value, decltype(early)::value,
-                                      decltype(count)::value>;
-            tbb::combinable<PipelineStatistics> perTask;
-            tbb::parallel_for(tbb::blocked_range<int>(0, bins.tileCount(), 8),
-                              [&](const tbb::blocked_range<int>& tiles) {
-              PipelineStatistics& local = perTask.local();
-              for (int tile = tiles.begin(); tile != tiles.end(); ++tile)
-                rasterizeTile<PS, Merge>(tile % bins.tilesX(), tile / bins.tilesX(),
-                                         bins.bin(tile), ctx, local);
-            });
-            perTask.combine_each([&](const PipelineStatistics& s) { stats += s; });
+          using Merge = MergeConfig<decltype(op)::value, decltype(depthWrite)::value,
+                                    decltype(colorWrite)::value, decltype(early)::value>;
+          tbb::combinable<PipelineStatistics> perTask;
+          tbb::parallel_for(tbb::blocked_range<int>(0, bins.tileCount(), 8),
+                            [&](const tbb::blocked_range<int>& tiles) {
+            PipelineStatistics& local = perTask.local();
+            for (int tile = tiles.begin(); tile != tiles.end(); ++tile)
+              rasterizeTile<PS, Merge>(tile % bins.tilesX(), tile / bins.tilesX(),
+                                       bins.bin(tile), ctx, local);
           });
+          perTask.combine_each([&](const PipelineStatistics& s) { stats += s; });
         });
       });
     });
