@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "tests/union_reference.h"
 #include "pipeline/draw.h"
 #include "scene/camera.h"
 #include "scene/mesh.h"
@@ -329,76 +330,7 @@ INSTANTIATE_TEST_SUITE_P(Watertight, WatertightWindow,
 // either way, every other sample must be covered exactly as often as the reference says: once
 // inside (shared edges included), never outside.
 
-class UnionReference {
- public:
-  explicit UnionReference(Viewport vp) : vp_(vp) {}
-
-  void addTriangle(const std::array<glm::dvec4, 3>& v, std::array<bool, 3> boundary) {
-    struct PV {
-      glm::dvec4 p;
-      bool edgeOnOutline;  // the edge from this vertex to the next
-    };
-    std::vector<PV> poly = {{v[0], boundary[0]}, {v[1], boundary[1]}, {v[2], boundary[2]}};
-    const std::array<glm::dvec4, 3> planes = {glm::dvec4(0, 0, 0, 1), glm::dvec4(0, 0, 1, 1),
-                                              glm::dvec4(0, 0, -1, 1)};
-    for (const glm::dvec4& plane : planes) {
-      std::vector<PV> out;
-      for (size_t i = 0; i < poly.size(); ++i) {
-        const PV& cur = poly[i];
-        const PV& next = poly[(i + 1) % poly.size()];
-        const double dc = glm::dot(plane, cur.p), dn = glm::dot(plane, next.p);
-        auto cut = [&] { return cur.p + (dc / (dc - dn)) * (next.p - cur.p); };
-        if (dc >= 0) {
-          out.push_back(cur);
-          if (dn < 0) out.push_back({cut(), true});  // runs along the plane to the re-entry
-        } else if (dn >= 0) {
-          out.push_back({cut(), cur.edgeOnOutline});
-        }
-      }
-      poly = std::move(out);
-      if (poly.size() < 3) return;
-    }
-    Polygon projected;
-    for (const PV& q : poly) {
-      projected.pts.push_back({q.p.x / q.p.w * 0.5 * vp_.width + vp_.x + 0.5 * vp_.width,
-                               -q.p.y / q.p.w * 0.5 * vp_.height + vp_.y + 0.5 * vp_.height});
-      projected.outline.push_back(q.edgeOnOutline);
-    }
-    polygons_.push_back(std::move(projected));
-  }
-
-  // 1 inside, 0 outside, -1 within `margin` pixels of the outline.
-  int classify(double x, double y, double margin) const {
-    bool inside = false;
-    double dist = std::numeric_limits<double>::infinity();
-    const glm::dvec2 s(x, y);
-    for (const Polygon& p : polygons_) {
-      bool pos = true, neg = true;
-      for (size_t i = 0; i < p.pts.size(); ++i) {
-        const glm::dvec2 a = p.pts[i], b = p.pts[(i + 1) % p.pts.size()];
-        const double c = (b.x - a.x) * (s.y - a.y) - (b.y - a.y) * (s.x - a.x);
-        pos &= c >= 0;
-        neg &= c <= 0;
-        if (p.outline[i]) {
-          const glm::dvec2 ab = b - a;
-          const double t = std::clamp(glm::dot(s - a, ab) / glm::dot(ab, ab), 0.0, 1.0);
-          dist = std::min(dist, glm::length(s - (a + t * ab)));
-        }
-      }
-      inside |= pos || neg;
-    }
-    if (dist <= margin) return -1;
-    return inside ? 1 : 0;
-  }
-
- private:
-  struct Polygon {
-    std::vector<glm::dvec2> pts;
-    std::vector<bool> outline;
-  };
-  Viewport vp_;
-  std::vector<Polygon> polygons_;
-};
+using test_support::UnionReference;  // tests/union_reference.h
 
 struct PositionVS {
   using Vertex = glm::vec4;
