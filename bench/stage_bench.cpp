@@ -120,13 +120,17 @@ BENCHMARK(BM_SetupTriangle)->Arg(4)->Arg(8)->Unit(benchmark::kMicrosecond);
 void BM_BinSmallTriangles(benchmark::State& state) {
   const std::vector<SetupTriangle<3>> tris =
       setUp(randomTriangles(100000, double(state.range(0)), 2), FixedPointFormat::d24_4());
+  // One chunk per 4096 triangles, as the front end leaves them.
+  std::vector<std::vector<SetupTriangle<3>>> chunks;
+  for (size_t i = 0; i < tris.size(); i += 4096)
+    chunks.emplace_back(tris.begin() + ptrdiff_t(i),
+                        tris.begin() + ptrdiff_t(std::min(tris.size(), i + 4096)));
   tbb::task_arena one(1);
   for (auto _ : state) {
     TileBins bins(1920, 1080);
     PipelineStatistics stats;
     one.execute([&] {
-      bins.build(tris.size(), FixedPointFormat::d24_4(),
-                 [&](size_t i) -> const SetupTriangle<3>& { return tris[i]; }, stats);
+      bins.build(chunks, FixedPointFormat::d24_4(), 0, &SetupTriangles<3>::id, stats);
     });
     benchmark::DoNotOptimize(bins.entryCount());
   }
@@ -187,8 +191,8 @@ void BM_PixelLambert(benchmark::State& state) {
 }
 BENCHMARK(BM_PixelLambert)->Unit(benchmark::kMicrosecond);
 
-// Shading and merging alone (no depth test; that runs before, per tile): constant colour, depth
-// and colour writes, one 8x8 tile per triangle.
+// The back end's per-tile stages alone, one full 8x8 tile per triangle on a tile buffer:
+// depth at 64 lanes, the depth test, constant-colour shading, depth and colour writes.
 void BM_MergeConstantColor(benchmark::State& state) {
   const std::vector<SetupTriangle<0>> tris = [] {
     std::vector<SetupTriangle<0>> t(256);
@@ -198,16 +202,21 @@ void BM_MergeConstantColor(benchmark::State& state) {
     }
     return t;
   }();
-  Framebuffer fb(8, 8);
   const ConstantColorShader ps;
-  using Merge = MergeConfig<CompareOp::Less, true, true, true>;
-  const MergeTarget target{fb.colorPlane().data(), fb.depthPlane().data(), nullptr};
+  TileBuffer tile;
+  TileLanes<float> z;
+  TileLanes<PackedColor> shaded;
   PipelineStatistics stats;
   for (auto _ : state) {
-    fb.clear(glm::vec4(0), 1.0f);
-    for (const SetupTriangle<0>& t : tris)
-      for (int p = 0; p < 64; ++p)
-        shadeAndMerge<ConstantColorShader, Merge>(t, p % 8, p / 8, ps, target, size_t(p), stats);
+    tile.depth[0].fill(1.0f);
+    for (const SetupTriangle<0>& t : tris) {
+      depthLanes(t, 0, 0, 0.0f, 0.0f, z);
+      const CoverageMask pass = depthTestLanes<CompareOp::Less>(z, tile.depth[0], kFullMask);
+      const CoverageMask kept = shadePixels(t, 0, 0, pass, ps, shaded, stats);
+      copyLanesWhere(kept, z, tile.depth[0]);
+      copyLanesWhere(kept, shaded, tile.color[0]);
+    }
+    benchmark::DoNotOptimize(tile);
   }
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(tris.size()) * 64);
 }

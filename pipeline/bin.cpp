@@ -9,7 +9,8 @@ TileBins::TileBins(int widthPixels, int heightPixels)
 
 void TileBins::addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
                            const PixelRect& bounds, FixedPointFormat format,
-                           ScratchVector<Entry>& out, PipelineStatistics& stats) const {
+                           int32_t sampleReach, ScratchVector<Entry>& out,
+                           PipelineStatistics& stats) const {
   const int tx0 = bounds.x0 >> kTileShift, tx1 = (bounds.x1 - 1) >> kTileShift;
   const int ty0 = bounds.y0 >> kTileShift, ty1 = (bounds.y1 - 1) >> kTileShift;
   if (tx0 == tx1 && ty0 == ty1) {
@@ -19,7 +20,7 @@ void TileBins::addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>&
   }
   for (int ty = ty0; ty <= ty1; ++ty) {
     for (int tx = tx0; tx <= tx1; ++tx) {
-      if (classifyTile(edges, bounds, tx, ty, format) == TileCoverage::Outside) {
+      if (classifyTile(edges, bounds, tx, ty, format, sampleReach) == TileCoverage::Outside) {
         ++stats.tilesTriviallyRejected;
         continue;
       }

@@ -6,14 +6,16 @@
 #include <span>
 #include <vector>
 
+#include <tbb/task_arena.h>
+
 #include "pipeline/execution.h"
 #include "pipeline/statistics.h"
 #include "rasterizer/coverage.h"
 
 namespace rast {
 
-// Triangle indices grouped by tile. Built from chunks of triangles in parallel, then placed by a
-// stable counting sort (tile-major, chunk-minor), so each bin lists its triangles in submission
+// Triangle ids grouped by tile. Built from groups of triangles in parallel, then placed by a
+// stable counting sort (tile-major, group-minor), so each bin lists its triangles in submission
 // order whatever the thread count.
 class TileBins {
  public:
@@ -28,21 +30,26 @@ class TileBins {
     return {triangles_.data() + offsets_[tile], triangles_.data() + offsets_[tile + 1]};
   }
 
-  // Bins triangles [0, count); triangle(i) returns an object with `edges` and `bounds`.
-  template <class TriangleAt>
-  void build(size_t count, FixedPointFormat format, TriangleAt&& triangle,
+  // Bins every triangle of `chunks` (a range of ranges of objects with `edges` and `bounds`),
+  // naming triangle i of chunk c by id(c, i). `sampleReach`: see classifyTile.
+  template <class Chunks, class IdOf>
+  void build(const Chunks& chunks, FixedPointFormat format, int32_t sampleReach, IdOf&& id,
              PipelineStatistics& stats) {
-    // At most 64 chunks: the counting sort keeps a count per (chunk, tile).
-    const size_t chunkSize = std::max<size_t>(1024, (count + 63) / 64);
-    std::vector<ScratchVector<Entry>> entries(chunkCount(count, chunkSize));
-    std::vector<PipelineStatistics> chunkStats(entries.size());
-    forEachChunk(count, chunkSize, [&](size_t c, size_t begin, size_t end) {
-      for (size_t i = begin; i < end; ++i) {
-        const auto& t = triangle(i);
-        addTriangle(uint32_t(i), t.edges, t.bounds, format, entries[c], chunkStats[c]);
-      }
+    // Groups of consecutive chunks, a few per thread: the counting sort keeps a count per
+    // (group, tile), so more groups than threads only cost memory. The grouping does not change
+    // the result: every bin lists its triangles in submission order.
+    const size_t maxGroups =
+        std::min<size_t>(64, 4 * size_t(tbb::this_task_arena::max_concurrency()));
+    const size_t groupSize = std::max<size_t>(1, (chunks.size() + maxGroups - 1) / maxGroups);
+    std::vector<ScratchVector<Entry>> entries(chunkCount(chunks.size(), groupSize));
+    std::vector<PipelineStatistics> groupStats(entries.size());
+    forEachChunk(chunks.size(), groupSize, [&](size_t g, size_t begin, size_t end) {
+      for (size_t c = begin; c < end; ++c)
+        for (size_t i = 0; i < chunks[c].size(); ++i)
+          addTriangle(id(c, i), chunks[c][i].edges, chunks[c][i].bounds, format, sampleReach,
+                      entries[g], groupStats[g]);
     });
-    for (const PipelineStatistics& s : chunkStats) stats += s;
+    for (const PipelineStatistics& s : groupStats) stats += s;
     sortByTile(entries);
   }
 
@@ -53,8 +60,8 @@ class TileBins {
   };
   // Appends the tiles of `bounds` that the corner test does not reject.
   void addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
-                   const PixelRect& bounds, FixedPointFormat format, ScratchVector<Entry>& out,
-                   PipelineStatistics& stats) const;
+                   const PixelRect& bounds, FixedPointFormat format, int32_t sampleReach,
+                   ScratchVector<Entry>& out, PipelineStatistics& stats) const;
   void sortByTile(const std::vector<ScratchVector<Entry>>& chunks);
 
   int tilesX_, tilesY_;

@@ -32,9 +32,17 @@ Status validateDraw(const Framebuffer& fb, const PipelineState& state, size_t ve
                          std::to_string(int64_t(guard)) + " pixels");
   if (double(fb.width()) > guard || double(fb.height()) > guard)
     return Status::error("framebuffer exceeds the " + f.name() + " fixed-point range");
+  if (fb.samples() > 1 && f.fractionBits < 4)
+    return Status::error("MSAA sample positions lie on a 1/16-pixel grid: " +
+                         std::to_string(fb.samples()) + " samples need at least 4 subpixel "
+                         "bits, the format is " + f.name());
   if (indices.size() % 3 != 0)
     return Status::error("index count " + std::to_string(indices.size()) +
                          " is not a multiple of 3");
+  // Set-up triangles are named by 17 bits of chunk and 15 of place (front_end.h).
+  if (indices.size() / 3 > (size_t{1} << 29))
+    return Status::error("a draw holds at most 2^29 triangles; split the " +
+                         std::to_string(indices.size() / 3) + "-triangle draw");
   for (size_t i = 0; i < indices.size(); ++i)
     if (indices[i] >= vertexCount)
       return Status::error("index " + std::to_string(i) + " has value " +

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstddef>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <tbb/parallel_for.h>
@@ -17,10 +19,30 @@ struct ExecutionOptions {
   CoverageKernel coverage = bestCoverageKernel();
 };
 
-// Per-draw temporaries. oneTBB's scalable allocator keeps freed large blocks for reuse, so a
-// frame does not page-fault its way through memory the previous frame just returned to the OS.
+// Per-draw temporaries, from oneTBB's scalable allocator (which keeps freed blocks for reuse by
+// the next draw). Growing one default-initialises its elements: every user writes each element
+// before reading it, so zeroing them first would be a wasted pass over memory.
 template <class T>
-using ScratchVector = std::vector<T, tbb::scalable_allocator<T>>;
+struct ScratchAllocator : tbb::scalable_allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = ScratchAllocator<U>;
+  };
+  ScratchAllocator() = default;
+  template <class U>
+  ScratchAllocator(const ScratchAllocator<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+template <class T>
+using ScratchVector = std::vector<T, ScratchAllocator<T>>;
 
 // Calls f(chunk, begin, end) for consecutive chunks of [0, count) of `chunkSize` items, in
 // parallel. Chunk boundaries depend only on count and chunkSize, never on the thread count.

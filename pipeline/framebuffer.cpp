@@ -47,13 +47,35 @@ glm::vec4 unpackColor(PackedColor c) {
                    float(c >> 24)) / 255.0f;
 }
 
-Framebuffer::Framebuffer(int width, int height, bool withCounts)
-    : width_(width), height_(height) {
+Framebuffer::Framebuffer(int width, int height, bool withCounts, int samples)
+    : width_(width), height_(height), samples_(samples) {
   if (width <= 0 || height <= 0) throw std::invalid_argument("framebuffer size must be positive");
+  if (!SamplePattern::supported(samples))
+    throw std::invalid_argument("framebuffer samples must be 1, 4 or 8");
   const size_t n = size_t(width) * size_t(height);
-  color_.assign(n, 0);
-  depth_.assign(n, 1.0f);
+  color_.assign(n * size_t(samples), 0);
+  depth_.assign(n * size_t(samples), 1.0f);
   if (withCounts) counts_.assign(n, 0);
+}
+
+PackedColor Framebuffer::color(int x, int y) const {
+  if (samples_ == 1) return color_[index(x, y)];
+  uint32_t sum[4] = {0, 0, 0, 0};
+  for (int s = 0; s < samples_; ++s) {
+    const PackedColor c = sampleColor(x, y, s);
+    for (int k = 0; k < 4; ++k) sum[k] += (c >> (8 * k)) & 255;
+  }
+  PackedColor out = 0;
+  for (int k = 0; k < 4; ++k) out |= ((sum[k] + uint32_t(samples_) / 2) / uint32_t(samples_)) << (8 * k);
+  return out;
+}
+
+std::vector<PackedColor> Framebuffer::resolvedColor() const {
+  if (samples_ == 1) return color_;
+  std::vector<PackedColor> out(pixelCount());
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x) out[index(x, y)] = color(x, y);
+  return out;
 }
 
 void Framebuffer::clear(glm::vec4 color, float depth) {
@@ -64,13 +86,13 @@ void Framebuffer::clear(glm::vec4 color, float depth) {
 void Framebuffer::clearCounts() { std::fill(counts_.begin(), counts_.end(), 0u); }
 
 Status writeColorImage(const Framebuffer& fb, const std::string& path) {
-  return writeImage(path, fb.width(), fb.height(), 4, OIIO::TypeDesc::UINT8,
-                    fb.colorPlane().data());
+  const std::vector<PackedColor> resolved = fb.resolvedColor();
+  return writeImage(path, fb.width(), fb.height(), 4, OIIO::TypeDesc::UINT8, resolved.data());
 }
 
 Status writeDepthImage(const Framebuffer& fb, const std::string& path) {
   return writeImage(path, fb.width(), fb.height(), 1, OIIO::TypeDesc::FLOAT,
-                    fb.depthPlane().data());
+                    fb.depthPlane().data());  // sample 0: the first plane
 }
 
 Status writeCountImage(const Framebuffer& fb, const std::string& path) {

@@ -1,5 +1,7 @@
 // The framebuffer: RGBA8 colour, 32-bit float depth and an optional per-pixel count of written
-// fragments, each row-major with row 0 at the top.
+// fragments, each row-major with row 0 at the top. With MSAA (4 or 8 samples) colour and depth
+// are kept per sample, one plane per sample index (plane s starts at s * width * height), and
+// the colour image is their resolve.
 #pragma once
 
 #include <cstdint>
@@ -9,6 +11,7 @@
 #include <glm/vec4.hpp>
 
 #include "pipeline/status.h"
+#include "rasterizer/sample_pattern.h"
 
 namespace rast {
 
@@ -28,18 +31,27 @@ glm::vec4 unpackColor(PackedColor c);
 
 class Framebuffer {
  public:
-  Framebuffer(int width, int height, bool withCounts = false);
+  // `samples`: 1, 4 or 8 (SamplePattern::supported); anything else throws.
+  Framebuffer(int width, int height, bool withCounts = false, int samples = 1);
 
   int width() const { return width_; }
   int height() const { return height_; }
+  int samples() const { return samples_; }
+  size_t pixelCount() const { return size_t(width_) * size_t(height_); }
   bool hasCounts() const { return !counts_.empty(); }
 
   void clear(glm::vec4 color, float depth);
   void clearCounts();
 
-  PackedColor color(int x, int y) const { return color_[index(x, y)]; }
-  float depth(int x, int y) const { return depth_[index(x, y)]; }
+  // The pixel's colour: with MSAA, the resolve of its samples.
+  PackedColor color(int x, int y) const;
+  float depth(int x, int y) const { return depth_[index(x, y)]; }  // sample 0
   uint32_t count(int x, int y) const { return counts_[index(x, y)]; }
+  PackedColor sampleColor(int x, int y, int s) const { return color_[s * pixelCount() + index(x, y)]; }
+  float sampleDepth(int x, int y, int s) const { return depth_[s * pixelCount() + index(x, y)]; }
+  // One colour per pixel: the box-filter resolve of the samples (each channel's mean, rounded to
+  // nearest, half up, in integers), or the colour plane itself without MSAA.
+  std::vector<PackedColor> resolvedColor() const;
 
   std::vector<PackedColor>& colorPlane() { return color_; }
   std::vector<float>& depthPlane() { return depth_; }
@@ -51,7 +63,7 @@ class Framebuffer {
   size_t index(int x, int y) const { return size_t(y) * size_t(width_) + size_t(x); }
 
  private:
-  int width_, height_;
+  int width_, height_, samples_;
   std::vector<PackedColor> color_;
   std::vector<float> depth_;
   std::vector<uint32_t> counts_;

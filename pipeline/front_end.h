@@ -78,30 +78,48 @@ void clipAndSetup(const TransformedVertices<N>& in, const ScratchVector<VertexCl
   }
 }
 
-// The whole front end after the vertex stage, in parallel chunks of triangles whose results are
-// joined in submission order.
+// The set-up triangles of a draw, in the chunks that made them (one chunk per 4096 input
+// triangles), in submission order. They are never concatenated: copying them would double the
+// front end's memory traffic, and chunk-sized blocks are reused by the allocator from draw to
+// draw where one frame-sized block would be fresh pages (page faults) every time. A triangle is
+// named by its chunk and its place in the chunk, packed in 32 bits (TriangleId).
+template <int N>
+struct SetupTriangles {
+  static constexpr size_t kInputChunk = 4096;
+  // Clipping makes at most kMaxClipVertices - 2 = 8 triangles of one, so a chunk holds at most
+  // 8 * 4096 = 2^15 triangles: 15 bits of local index, 17 of chunk (2^29 input triangles, which
+  // validateDraw enforces).
+  static constexpr int kLocalBits = 15;
+  static_assert(kInputChunk * (kMaxClipVertices - 2) <= (size_t{1} << kLocalBits));
+
+  std::vector<ScratchVector<SetupTriangle<N>>> chunks;
+
+  static uint32_t id(size_t chunk, size_t local) { return uint32_t(chunk << kLocalBits | local); }
+  const SetupTriangle<N>& operator[](uint32_t id) const {
+    return chunks[id >> kLocalBits][id & ((uint32_t{1} << kLocalBits) - 1)];
+  }
+  size_t size() const {
+    size_t n = 0;
+    for (const auto& c : chunks) n += c.size();
+    return n;
+  }
+};
+
+// The whole front end after the vertex stage, in parallel chunks of triangles.
 template <int N>
 void clipAndSetupAll(const TransformedVertices<N>& in, const SetupContext& ctx,
-                     const ClipPlanes& planes, ScratchVector<SetupTriangle<N>>& out,
-                     PipelineStatistics& stats) {
+                     const ClipPlanes& planes, SetupTriangles<N>& out, PipelineStatistics& stats) {
   const ScratchVector<VertexClipCodes> codes = computeClipCodes(in.vertices, planes);
-  constexpr size_t kChunk = 4096;
+  constexpr size_t kChunk = SetupTriangles<N>::kInputChunk;
   const size_t triangleCount = in.indices.size() / 3;
   const size_t chunks = chunkCount(triangleCount, kChunk);
-  std::vector<ScratchVector<SetupTriangle<N>>> parts(chunks);
+  out.chunks.resize(chunks);
   std::vector<PipelineStatistics> partStats(chunks);
   forEachChunk(triangleCount, kChunk, [&](size_t c, size_t begin, size_t end) {
-    clipAndSetup(in, codes, uint32_t(begin), uint32_t(end), ctx, planes, parts[c], partStats[c]);
+    clipAndSetup(in, codes, uint32_t(begin), uint32_t(end), ctx, planes, out.chunks[c],
+                 partStats[c]);
   });
-  std::vector<size_t> offsets(chunks + 1, 0);
-  for (size_t c = 0; c < chunks; ++c) {
-    offsets[c + 1] = offsets[c] + parts[c].size();
-    stats += partStats[c];
-  }
-  out.resize(offsets[chunks]);
-  tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
-    std::copy(parts[c].begin(), parts[c].end(), out.begin() + ptrdiff_t(offsets[c]));
-  });
+  for (const PipelineStatistics& s : partStats) stats += s;
 }
 
 }  // namespace rast

@@ -8,6 +8,8 @@
 //   static constexpr int kVaryings = M;      varyings it reads (M <= N): only these are interpolated
 //   static constexpr bool kMayDiscard;       whether it can return PixelResult::discarded()
 //   PixelResult operator()(const Fragment<M>&) const;
+// and optionally
+//   static constexpr bool kDerivatives = true;  run on 2x2 quads: Fragment::ddx/ddy are filled
 // Shaders are called through templates, so they inline into the stage loops.
 #pragma once
 
@@ -36,6 +38,9 @@ struct Fragment {
   float depth = 0;        // window depth z/w in [0, 1]
   bool frontFacing = true;
   uint32_t primitiveId = 0;  // index of the triangle within its draw
+  // Screen-space derivatives of each varying across the pixel's 2x2 quad (per pixel to the
+  // right and down); zero unless the shader declares kDerivatives.
+  Varyings<N> ddx{}, ddy{};
 };
 
 struct PixelResult {

@@ -36,6 +36,7 @@ struct PipelineStatistics {
   uint64_t depthTestsPassed = 0;
   uint64_t depthTestsFailed = 0;
   uint64_t pixelShaderInvocations = 0;
+  uint64_t pixelHelperLanes = 0;  // quad lanes interpolated only for derivatives, never shaded
   uint64_t fragmentsDiscarded = 0;
   uint64_t fragmentsWritten = 0;  // passed every test; what the count image counts
 
@@ -48,7 +49,7 @@ struct PipelineStatistics {
 };
 
 // Every counter with its name: the one list that JSON, tables and summation all use.
-inline constexpr std::array<std::pair<const char*, uint64_t PipelineStatistics::*>, 23>
+inline constexpr std::array<std::pair<const char*, uint64_t PipelineStatistics::*>, 24>
     kPipelineCounters = {{
     {"vertex.input_indices", &PipelineStatistics::inputIndices},
     {"vertex.shader_invocations", &PipelineStatistics::vertexShaderInvocations},
@@ -71,6 +72,7 @@ inline constexpr std::array<std::pair<const char*, uint64_t PipelineStatistics::
     {"merge.depth_passed", &PipelineStatistics::depthTestsPassed},
     {"merge.depth_failed", &PipelineStatistics::depthTestsFailed},
     {"pixel.shader_invocations", &PipelineStatistics::pixelShaderInvocations},
+    {"pixel.helper_lanes", &PipelineStatistics::pixelHelperLanes},
     {"pixel.discarded", &PipelineStatistics::fragmentsDiscarded},
     {"merge.fragments_written", &PipelineStatistics::fragmentsWritten},
 }};

@@ -1,36 +1,45 @@
-// The back end: per tile, per binned triangle in submission order, coverage (raster), the early
-// depth test of the covered samples, then per passing pixel interpolation, the pixel shader and
-// the output merger.
+// The back end: per 8x8 tile, per binned triangle in submission order: coverage of each sample
+// (raster), the depth test, interpolation and the pixel shader (in 2x2 quads when the shader takes
+// derivatives), then depth and colour writes (the output merger).
+//
+// A tile's framebuffer values are copied into a TileBuffer when its first triangle arrives and
+// copied back after its last, as a GPU keeps a tile in on-chip memory: every stage then works on
+// 64 lanes of L1-resident arrays in loops the compiler vectorises, whatever the tile's position.
+//
+// Draw state is read per (triangle, tile), never per pixel: the depth test is a function
+// specialised on the compare op (chosen once per draw), and write enables and MSAA sample counts
+// are tested once per triangle and tile, outside the per-lane loops.
 #pragma once
 
 #include <algorithm>
 #include <bit>
+#include <cstring>
 #include <limits>
 #include <span>
-#include <type_traits>
-#include <vector>
 
 #include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
 
 #include "pipeline/bin.h"
+#include "pipeline/front_end.h"
 #include "pipeline/interpolate.h"
 #include "pipeline/merge.h"
 #include "pipeline/shader.h"
 #include "rasterizer/coverage_kernels.h"
+#include "rasterizer/sample_pattern.h"
 
 namespace rast {
 
-// What one task needs to run a tile; the same for every tile of a draw.
-template <PixelShader PS, int N = PS::kVaryings>
-struct TileContext {
-  const ScratchVector<SetupTriangle<N>>& triangles;
-  const PS& shader;
-  FixedPointFormat format;
-  CoverageKernel kernel;
-  MergeTarget target;
-  int framebufferWidth;
-  int framebufferHeight;
+inline constexpr int kTileLanes = kTileSize * kTileSize;
+
+template <class T>
+using TileLanes = std::array<T, kTileLanes>;
+
+// A tile's copy of the framebuffer: per sample plane, 64 lanes in coverage-bit order.
+struct TileBuffer {
+  std::array<TileLanes<float>, kMaxSamples> depth;
+  std::array<TileLanes<PackedColor>, kMaxSamples> color;
+  TileLanes<uint32_t> counts;
 };
 
 // Bounds of the depth values stored in a tile, so a triangle whose depth range lies entirely on
@@ -38,6 +47,8 @@ struct TileContext {
 // the passing side, passes without them). Exact, not approximate: the plane is evaluated in float
 // as (at0 + ddx*dx) + ddy*dy, and every step of that is monotonic in dx and in dy, so the float
 // value at any sample of the tile lies between the float values at the tile's corner samples.
+// Bounds may be wider than the stored values (after a write they are widened by the writing
+// triangle's range instead of recomputed): wider bounds decide less, never wrongly.
 // A NaN stored depth (only a NaN clear value makes one) fails every ordered compare, so it
 // cannot spoil "all fail" but forbids "all pass".
 struct TileDepthBounds {
@@ -46,222 +57,395 @@ struct TileDepthBounds {
   bool valid = false;
 };
 
-template <CompareOp Op>
-constexpr bool kOrderedCompare = Op == CompareOp::Less || Op == CompareOp::LessEqual ||
-                                 Op == CompareOp::Greater || Op == CompareOp::GreaterEqual;
-
-template <CompareOp Op>
-constexpr bool allFail(float triMin, float triMax, const TileDepthBounds& b) {
-  if constexpr (Op == CompareOp::Less) return triMin >= b.max;
-  else if constexpr (Op == CompareOp::LessEqual) return triMin > b.max;
-  else if constexpr (Op == CompareOp::Greater) return triMax <= b.min;
-  else return triMax < b.min;  // GreaterEqual
+constexpr bool isOrderedCompare(CompareOp op) {
+  return op == CompareOp::Less || op == CompareOp::LessEqual || op == CompareOp::Greater ||
+         op == CompareOp::GreaterEqual;
 }
 
-template <CompareOp Op>
-constexpr bool allPass(float triMin, float triMax, const TileDepthBounds& b) {
-  if (b.hasNaN) return false;
-  if constexpr (Op == CompareOp::Less) return triMax < b.min;
-  else if constexpr (Op == CompareOp::LessEqual) return triMax <= b.min;
-  else if constexpr (Op == CompareOp::Greater) return triMin > b.max;
-  else return triMin >= b.max;  // GreaterEqual
-}
-
-// The depth test of every sample in `mask`; returns those that pass.
-template <class Merge, int N>
-CoverageMask depthTestMask(const SetupTriangle<N>& t, CoverageMask mask, int tileX, int tileY,
-                           const MergeTarget& target, int width) {
-  CoverageMask pass = 0;
-  for (CoverageMask m = mask; m; m &= m - 1) {
-    const int bit = std::countr_zero(m);
-    const int px = tileX * kTileSize + bit % kTileSize, py = tileY * kTileSize + bit / kTileSize;
-    const float z = interpolateDepth(t, float(px - t.bounds.x0), float(py - t.bounds.y0));
-    if (depthPasses<Merge::kCompare>(z, target.depth[size_t(py) * width + px]))
-      pass |= CoverageMask{1} << bit;
+inline bool allFail(CompareOp op, float triMin, float triMax, const TileDepthBounds& b) {
+  switch (op) {
+    case CompareOp::Less: return triMin >= b.max;
+    case CompareOp::LessEqual: return triMin > b.max;
+    case CompareOp::Greater: return triMax <= b.min;
+    case CompareOp::GreaterEqual: return triMax < b.min;
+    default: return false;
   }
-  return pass;
 }
 
-// Interpolates, shades and merges one pixel whose early tests (if any) passed.
-template <PixelShader PS, class Merge, int N = PS::kVaryings>
-void shadeAndMerge(const SetupTriangle<N>& t, int px, int py, const PS& shader,
-                   const MergeTarget& target, size_t pixel, PipelineStatistics& stats) {
-  constexpr bool kDepthTest = Merge::kCompare != CompareOp::Always;
-  // With colour writes off, a shader that cannot discard has no visible effect: skip it.
-  constexpr bool kShade = Merge::kColorWrite || PS::kMayDiscard;
-  constexpr bool kLateDepth = kDepthTest && !Merge::kEarlyDepth && kShade;
-  const float dx = float(px - t.bounds.x0), dy = float(py - t.bounds.y0);
-  const float z = interpolateDepth(t, dx, dy);
-  PixelResult result;
-  if constexpr (kShade) {
-    Fragment<N> fragment;
-    interpolateVaryings<N>(t, dx, dy, fragment.varyings);
+inline bool allPass(CompareOp op, float triMin, float triMax, const TileDepthBounds& b) {
+  if (b.hasNaN) return false;
+  switch (op) {
+    case CompareOp::Less: return triMax < b.min;
+    case CompareOp::LessEqual: return triMax <= b.min;
+    case CompareOp::Greater: return triMin > b.max;
+    case CompareOp::GreaterEqual: return triMin >= b.max;
+    default: return false;
+  }
+}
+
+// Eight bytes of 0 or 1 (lane j in byte j) to eight mask bits (lane j in bit j): the multiply
+// gathers byte j's bit into bit 56 + j; no partial sum reaches the next byte (the largest, at
+// byte 6, is 2 + 4 + ... + 128 = 254).
+inline uint64_t packLaneBytes(const uint8_t* lanes) {
+  CoverageMask mask = 0;
+  for (int row = 0; row < kTileSize; ++row) {
+    uint64_t bytes;
+    std::memcpy(&bytes, lanes + kTileSize * row, sizeof bytes);
+    mask |= (((bytes & 0x0101010101010101ull) * 0x0102040810204080ull) >> 56) << (kTileSize * row);
+  }
+  return mask;
+}
+
+// The depth test of 64 lanes, specialised on the compare op; returns the lanes of `mask` that pass.
+using DepthTestFn = CoverageMask (*)(const TileLanes<float>& z, const TileLanes<float>& stored,
+                                     CoverageMask mask);
+
+template <CompareOp Op>
+CoverageMask depthTestLanes(const TileLanes<float>& z, const TileLanes<float>& stored,
+                            CoverageMask mask) {
+  alignas(64) uint8_t pass[kTileLanes];
+  for (int i = 0; i < kTileLanes; ++i) pass[i] = depthPasses<Op>(z[i], stored[i]) ? 1 : 0;
+  return packLaneBytes(pass) & mask;
+}
+
+inline DepthTestFn depthTestFor(CompareOp op) {
+  using enum CompareOp;
+  switch (op) {
+    case Never: return &depthTestLanes<Never>;
+    case Less: return &depthTestLanes<Less>;
+    case Equal: return &depthTestLanes<Equal>;
+    case LessEqual: return &depthTestLanes<LessEqual>;
+    case Greater: return &depthTestLanes<Greater>;
+    case NotEqual: return &depthTestLanes<NotEqual>;
+    case GreaterEqual: return &depthTestLanes<GreaterEqual>;
+    case Always: return nullptr;
+  }
+  return nullptr;
+}
+
+// What the back end does, fixed for the whole draw.
+struct BackEndConfig {
+  FixedPointFormat format;
+  CoverageKernel kernel;
+  SamplePattern samples;
+  CompareOp compare = CompareOp::Always;
+  DepthTestFn depthTest = nullptr;  // null: no test (compare Always)
+  bool depthWrite = false;
+  bool colorWrite = false;
+  bool earlyDepth = true;
+  // Framebuffer planes (sample-major) and size.
+  MergeTarget target;
+  int width = 0, height = 0;
+};
+
+// Depth of the triangle at 64 lanes of sample s: the same expression, in the same order, as
+// interpolateDepth, so the per-sample and per-pixel paths agree bit for bit.
+template <int N>
+void depthLanes(const SetupTriangle<N>& t, int x0, int y0, float offsetX, float offsetY,
+                TileLanes<float>& z) {
+  const float dx0 = float(x0 - t.bounds.x0) + offsetX, dy0 = float(y0 - t.bounds.y0) + offsetY;
+  for (int ly = 0; ly < kTileSize; ++ly)
+    for (int lx = 0; lx < kTileSize; ++lx) {
+      const float v = t.depth.at(dx0 + float(lx), dy0 + float(ly));
+      z[ly * kTileSize + lx] = v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v);
+    }
+}
+
+// Shaders that declare `static constexpr bool kDerivatives = true` run on 2x2 quads.
+template <class PS>
+constexpr bool kTakesDerivatives = requires { requires PS::kDerivatives; };
+
+// Runs the pixel shader on the pixels of `pixels` and stores their colours in `out`; returns the
+// pixels that were not discarded.
+template <PixelShader PS, int N>
+CoverageMask shadePixels(const SetupTriangle<N>& t, int x0, int y0, CoverageMask pixels,
+                         const PS& shader, TileLanes<PackedColor>& out,
+                         PipelineStatistics& stats) {
+  CoverageMask kept = pixels;
+  auto shadeOne = [&](int bit, Fragment<N>& fragment) {
+    const int px = x0 + bit % kTileSize, py = y0 + bit / kTileSize;
+    const float dx = float(px - t.bounds.x0), dy = float(py - t.bounds.y0);
     fragment.x = px;
     fragment.y = py;
-    fragment.depth = z;
+    fragment.depth = interpolateDepth(t, dx, dy);
     fragment.frontFacing = t.frontFacing;
     fragment.primitiveId = t.primitiveId;
-    result = shader(fragment);
-    ++stats.pixelShaderInvocations;
+    const PixelResult result = shader(fragment);
     if constexpr (PS::kMayDiscard) {
       if (result.discard) {
-        ++stats.fragmentsDiscarded;
+        kept &= ~(CoverageMask{1} << bit);
         return;
       }
     }
-  }
-  if constexpr (kLateDepth) {
-    if (!depthPasses<Merge::kCompare>(z, target.depth[pixel])) {
-      ++stats.depthTestsFailed;
-      return;
-    }
-    ++stats.depthTestsPassed;
-  }
-  if constexpr (Merge::kDepthWrite) target.depth[pixel] = z;
-  if constexpr (Merge::kColorWrite) target.color[pixel] = packColor(result.color);
-  if (target.counts) ++target.counts[pixel];
-  ++stats.fragmentsWritten;
-}
+    out[bit] = packColor(result.color);
+  };
 
-template <PixelShader PS, class Merge, int N = PS::kVaryings>
-void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
-                   const TileContext<PS, N>& ctx, PipelineStatistics& stats) {
-  constexpr CompareOp kOp = Merge::kCompare;
-  constexpr bool kShade = Merge::kColorWrite || PS::kMayDiscard;
-  // Depth tested before shading: always when no shader runs, else when early depth is on.
-  constexpr bool kEarlyTest = kOp != CompareOp::Always && (Merge::kEarlyDepth || !kShade);
-  constexpr bool kUseBounds = kEarlyTest && kOrderedCompare<kOp>;
-  const int width = ctx.framebufferWidth;
-  const int x0 = tileX * kTileSize, y0 = tileY * kTileSize;
-  const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, ctx.framebufferHeight);
-  TileDepthBounds stored;
-
-  for (const uint32_t index : bin) {
-    const SetupTriangle<N>& t = ctx.triangles[index];
-    const TileCoverageResult coverage =
-        coverTile(ctx.kernel, t.edges, t.bounds, tileX, tileY, ctx.format);
-    switch (coverage.kind) {
-      case TileCoverage::Outside:
-        ++stats.tilesTriviallyRejected;
-        continue;
-      case TileCoverage::Inside:
-        ++stats.tilesTriviallyAccepted;
-        break;
-      case TileCoverage::Partial:
-        ++stats.tilesPartial;
-        break;
-    }
-    CoverageMask mask = coverage.mask;
-    if (!mask) continue;
-    const uint64_t covered = uint64_t(std::popcount(mask));
-    stats.samplesCovered += covered;
-
-    if constexpr (kEarlyTest) {
-      CoverageMask pass;
-      bool decided = false;
-      if constexpr (kUseBounds) {
-        if (!stored.valid) {
-          stored = {std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
-                    false, true};
-          for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x) {
-              const float d = ctx.target.depth[size_t(y) * width + x];
-              stored.hasNaN |= d != d;
-              stored.min = d < stored.min ? d : stored.min;
-              stored.max = d > stored.max ? d : stored.max;
-            }
+  if constexpr (kTakesDerivatives<PS>) {
+    // Quads: every lane of a quad with a covered pixel is interpolated, the uncovered ones as
+    // helper lanes, so differences across the quad give the derivatives (coarse, as Direct3D's
+    // ddx/ddy: one per quad, from its top-left pixel to its right and lower neighbours). Helper
+    // lanes are never shaded or written.
+    constexpr CoverageMask kQuad = 0b11 | (0b11ull << kTileSize);
+    for (int qy = 0; qy < kTileSize; qy += 2)
+      for (int qx = 0; qx < kTileSize; qx += 2) {
+        const int base = qy * kTileSize + qx;
+        const CoverageMask lanes = pixels & (kQuad << base);
+        if (!lanes) continue;
+        std::array<Varyings<N>, 4> v;
+        for (int k = 0; k < 4; ++k) {
+          const float dx = float(x0 + qx + (k & 1) - t.bounds.x0);
+          const float dy = float(y0 + qy + (k >> 1) - t.bounds.y0);
+          interpolateVaryings<N>(t, dx, dy, v[k]);
         }
-        const float corners[4] = {
-            interpolateDepth(t, float(x0 - t.bounds.x0), float(y0 - t.bounds.y0)),
-            interpolateDepth(t, float(x1 - 1 - t.bounds.x0), float(y0 - t.bounds.y0)),
-            interpolateDepth(t, float(x0 - t.bounds.x0), float(y1 - 1 - t.bounds.y0)),
-            interpolateDepth(t, float(x1 - 1 - t.bounds.x0), float(y1 - 1 - t.bounds.y0))};
-        const float triMin = std::min({corners[0], corners[1], corners[2], corners[3]});
-        const float triMax = std::max({corners[0], corners[1], corners[2], corners[3]});
-        if (allFail<kOp>(triMin, triMax, stored)) {
-          stats.depthTestsFailed += covered;
-          continue;
+        Fragment<N> fragment;
+        for (int i = 0; i < N; ++i) {
+          fragment.ddx[i] = v[1][i] - v[0][i];
+          fragment.ddy[i] = v[2][i] - v[0][i];
         }
-        if (allPass<kOp>(triMin, triMax, stored)) {
-          pass = mask;
-          decided = true;
+        stats.pixelHelperLanes += uint64_t(4 - popcount64(lanes));
+        for (int k = 0; k < 4; ++k) {
+          const int bit = base + (k & 1) + (k >> 1) * kTileSize;
+          if (!(lanes >> bit & 1)) continue;
+          fragment.varyings = v[k];
+          shadeOne(bit, fragment);
         }
       }
-      if (!decided) pass = depthTestMask<Merge>(t, mask, tileX, tileY, ctx.target, width);
-      const uint64_t passed = uint64_t(std::popcount(pass));
+  } else {
+    for (CoverageMask m = pixels; m; m &= m - 1) {
+      const int bit = std::countr_zero(m);
+      Fragment<N> fragment;
+      interpolateVaryings<N>(t, float(x0 + bit % kTileSize - t.bounds.x0),
+                             float(y0 + bit / kTileSize - t.bounds.y0), fragment.varyings);
+      shadeOne(bit, fragment);
+    }
+  }
+  stats.pixelShaderInvocations += uint64_t(popcount64(pixels));
+  stats.fragmentsDiscarded += uint64_t(popcount64(pixels & ~kept));
+  return kept;
+}
+
+template <class T>
+void copyLanesWhere(CoverageMask mask, const TileLanes<T>& from, TileLanes<T>& to) {
+  if (mask == kFullMask) {
+    to = from;
+    return;
+  }
+  for (CoverageMask m = mask; m; m &= m - 1) {
+    const int bit = std::countr_zero(m);
+    to[bit] = from[bit];
+  }
+}
+
+// One tile: its framebuffer values in, every binned triangle in order, the values out.
+template <PixelShader PS, int N>
+void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
+                   const SetupTriangles<N>& triangles, const PS& shader,
+                   const BackEndConfig& cfg, TileBuffer& tile, PipelineStatistics& stats) {
+  if (bin.empty()) return;
+  const int S = cfg.samples.count;
+  const int x0 = tileX * kTileSize, y0 = tileY * kTileSize;
+  const int cols = std::min(kTileSize, cfg.width - x0), rows = std::min(kTileSize, cfg.height - y0);
+  const size_t planeSize = size_t(cfg.width) * size_t(cfg.height);
+  const bool depthRead = cfg.depthTest != nullptr;
+  const bool depthUsed = depthRead || cfg.depthWrite;
+  const bool counting = cfg.target.counts != nullptr;
+  const MergeTarget& target = cfg.target;
+
+  // Lanes beyond the framebuffer's edge are never covered (bounds stop at the edge) and never
+  // stored; they are filled only to keep every value defined.
+  auto load = [&](auto* plane, auto& lanes, auto pad) {
+    for (int ly = 0; ly < rows; ++ly)
+      std::memcpy(&lanes[ly * kTileSize], plane + size_t(y0 + ly) * cfg.width + x0,
+                  sizeof(lanes[0]) * size_t(cols));
+    if (cols < kTileSize || rows < kTileSize)
+      for (int ly = 0; ly < kTileSize; ++ly)
+        for (int lx = 0; lx < kTileSize; ++lx)
+          if (lx >= cols || ly >= rows) lanes[ly * kTileSize + lx] = pad(lanes);
+  };
+  auto store = [&](auto* plane, const auto& lanes) {
+    for (int ly = 0; ly < rows; ++ly)
+      std::memcpy(plane + size_t(y0 + ly) * cfg.width + x0, &lanes[ly * kTileSize],
+                  sizeof(lanes[0]) * size_t(cols));
+  };
+  if (depthUsed)
+    for (int s = 0; s < S; ++s)
+      load(target.depth + s * planeSize, tile.depth[s], [](auto& l) { return l[0]; });
+  if (cfg.colorWrite)
+    for (int s = 0; s < S; ++s)
+      load(target.color + s * planeSize, tile.color[s], [](auto&) { return PackedColor{0}; });
+  if (counting) load(target.counts, tile.counts, [](auto&) { return uint32_t{0}; });
+
+  const bool shade = cfg.colorWrite || PS::kMayDiscard;
+  // Depth tested before shading: always when no shader runs, else when early depth is on.
+  const bool earlyTest = depthRead && (cfg.earlyDepth || !shade);
+  const bool useBounds = earlyTest && isOrderedCompare(cfg.compare);
+  // The extremes of the sample positions over the tile, for the triangle's depth range.
+  float offMinX = 0, offMaxX = 0, offMinY = 0, offMaxY = 0;
+  for (int s = 0; s < S; ++s) {
+    offMinX = std::min(offMinX, cfg.samples.offsetXPixels(s));
+    offMaxX = std::max(offMaxX, cfg.samples.offsetXPixels(s));
+    offMinY = std::min(offMinY, cfg.samples.offsetYPixels(s));
+    offMaxY = std::max(offMaxY, cfg.samples.offsetYPixels(s));
+  }
+  const CoverageMask validLanes = rectMask({x0, y0, x0 + cols, y0 + rows}, tileX, tileY);
+  TileDepthBounds stored;
+  bool depthDirty = false, colorDirty = false, countsDirty = false;
+  std::array<CoverageMask, kMaxSamples> mask;
+  std::array<TileLanes<float>, kMaxSamples> z;
+  TileLanes<PackedColor> shaded;
+
+  for (const uint32_t id : bin) {
+    const SetupTriangle<N>& t = triangles[id];
+    CoverageMask anySample = 0;
+    uint64_t covered = 0;
+    for (int s = 0; s < S; ++s) {
+      const TileCoverageResult c =
+          coverTile(cfg.kernel, t.edges, t.bounds, tileX, tileY, cfg.format,
+                    cfg.samples.offsetX(s, cfg.format), cfg.samples.offsetY(s, cfg.format));
+      if (s == 0) {
+        // Whole-tile outcomes are counted for sample 0, the only one without MSAA.
+        if (c.kind == TileCoverage::Outside) ++stats.tilesTriviallyRejected;
+        else if (c.kind == TileCoverage::Inside) ++stats.tilesTriviallyAccepted;
+        else ++stats.tilesPartial;
+      }
+      mask[s] = c.mask;
+      anySample |= c.mask;
+      covered += uint64_t(popcount64(c.mask));
+    }
+    if (!anySample) continue;
+    stats.samplesCovered += covered;
+
+    float triMin = 0, triMax = 0;
+    if (useBounds) {
+      const float ax = float(x0 - t.bounds.x0), ay = float(y0 - t.bounds.y0);
+      const float bx = ax + float(cols - 1), by = ay + float(rows - 1);
+      const float corners[4] = {
+          interpolateDepth(t, ax + offMinX, ay + offMinY), interpolateDepth(t, bx + offMaxX, ay + offMinY),
+          interpolateDepth(t, ax + offMinX, by + offMaxY), interpolateDepth(t, bx + offMaxX, by + offMaxY)};
+      triMin = std::min({corners[0], corners[1], corners[2], corners[3]});
+      triMax = std::max({corners[0], corners[1], corners[2], corners[3]});
+      if (!stored.valid) {
+        stored = {std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
+                  false, true};
+        for (int s = 0; s < S; ++s)
+          for (CoverageMask m = validLanes; m; m &= m - 1) {
+            const float d = tile.depth[s][std::countr_zero(m)];
+            stored.hasNaN |= d != d;
+            stored.min = d < stored.min ? d : stored.min;
+            stored.max = d > stored.max ? d : stored.max;
+          }
+      }
+      if (allFail(cfg.compare, triMin, triMax, stored)) {
+        stats.depthTestsFailed += covered;
+        continue;
+      }
+    }
+
+    if (depthUsed)
+      for (int s = 0; s < S; ++s)
+        depthLanes(t, x0, y0, cfg.samples.offsetXPixels(s), cfg.samples.offsetYPixels(s), z[s]);
+
+    auto depthTest = [&] {
+      uint64_t passed = 0;
+      anySample = 0;
+      for (int s = 0; s < S; ++s) {
+        mask[s] = cfg.depthTest(z[s], tile.depth[s], mask[s]);
+        anySample |= mask[s];
+        passed += uint64_t(popcount64(mask[s]));
+      }
+      return passed;
+    };
+    if (earlyTest && !(useBounds && allPass(cfg.compare, triMin, triMax, stored))) {
+      const uint64_t passed = depthTest();
       stats.depthTestsPassed += passed;
       stats.depthTestsFailed += covered - passed;
-      mask = pass;
-      if (!mask) continue;
+      if (!anySample) continue;
+    } else if (earlyTest) {
+      stats.depthTestsPassed += covered;
     }
-    for (CoverageMask m = mask; m; m &= m - 1) {
-      const int bit = std::countr_zero(m);
-      const int px = x0 + bit % kTileSize, py = y0 + bit / kTileSize;
-      shadeAndMerge<PS, Merge>(t, px, py, ctx.shader, ctx.target, size_t(py) * width + px, stats);
+
+    if (shade) {
+      const CoverageMask kept = shadePixels(t, x0, y0, anySample, shader, shaded, stats);
+      if (kept != anySample) {
+        anySample = kept;
+        for (int s = 0; s < S; ++s) mask[s] &= kept;
+      }
+      if (!kept) continue;
     }
-    if constexpr (kUseBounds && Merge::kDepthWrite) stored.valid = false;
+    if (depthRead && !earlyTest) {
+      uint64_t before = 0;
+      for (int s = 0; s < S; ++s) before += uint64_t(popcount64(mask[s]));
+      const uint64_t passed = depthTest();
+      stats.depthTestsPassed += passed;
+      stats.depthTestsFailed += before - passed;
+      if (!anySample) continue;
+    }
+
+    if (cfg.depthWrite) {
+      for (int s = 0; s < S; ++s) copyLanesWhere(mask[s], z[s], tile.depth[s]);
+      depthDirty = true;
+      if (stored.valid) {
+        bool overwroteAll = true;
+        for (int s = 0; s < S; ++s) overwroteAll &= (mask[s] & validLanes) == validLanes;
+        if (!(triMin == triMin && triMax == triMax)) {
+          stored.valid = false;
+        } else if (overwroteAll) {
+          stored = {triMin, triMax, false, true};  // every stored value is now the triangle's
+        } else {
+          stored.min = std::min(stored.min, triMin);
+          stored.max = std::max(stored.max, triMax);
+        }
+      }
+    }
+    if (cfg.colorWrite) {
+      for (int s = 0; s < S; ++s) copyLanesWhere(mask[s], shaded, tile.color[s]);
+      colorDirty = true;
+    }
+    if (counting) {
+      for (CoverageMask m = anySample; m; m &= m - 1) ++tile.counts[std::countr_zero(m)];
+      countsDirty = true;
+    }
+    stats.fragmentsWritten += uint64_t(popcount64(anySample));
   }
+
+  if (depthDirty)
+    for (int s = 0; s < S; ++s) store(target.depth + s * planeSize, tile.depth[s]);
+  if (colorDirty)
+    for (int s = 0; s < S; ++s) store(target.color + s * planeSize, tile.color[s]);
+  if (countsDirty) store(target.counts, tile.counts);
 }
 
-namespace detail {
-
-template <class F>
-void withCompareOp(CompareOp op, F&& f) {
-  using enum CompareOp;
-  switch (op) {
-    case Never: return f(std::integral_constant<CompareOp, Never>{});
-    case Less: return f(std::integral_constant<CompareOp, Less>{});
-    case Equal: return f(std::integral_constant<CompareOp, Equal>{});
-    case LessEqual: return f(std::integral_constant<CompareOp, LessEqual>{});
-    case Greater: return f(std::integral_constant<CompareOp, Greater>{});
-    case NotEqual: return f(std::integral_constant<CompareOp, NotEqual>{});
-    case GreaterEqual: return f(std::integral_constant<CompareOp, GreaterEqual>{});
-    case Always: return f(std::integral_constant<CompareOp, Always>{});
-  }
-}
-
-template <class F>
-void withFlag(bool flag, F&& f) {
-  if (flag) f(std::true_type{});
-  else f(std::false_type{});
-}
-
-}  // namespace detail
-
-// Runs every tile, specialised once per draw on the merge state. Tiles run in parallel: each
-// pixel belongs to one tile, and one task owns a tile, so no two tasks touch the same pixel, and
-// within a tile triangles merge in submission order; statistics are sums, the same in any order.
+// Runs every tile. Tiles run in parallel: each pixel belongs to one tile, and one task owns a
+// tile, so no two tasks touch the same pixel, and within a tile triangles merge in submission
+// order; statistics are sums, the same in any order.
 template <PixelShader PS, int N = PS::kVaryings>
 void runBackEnd(Framebuffer& fb, const PipelineState& state, const TileBins& bins,
-                const ScratchVector<SetupTriangle<N>>& triangles, const PS& shader,
+                const SetupTriangles<N>& triangles, const PS& shader,
                 const CoverageKernel& kernel, PipelineStatistics& stats) {
-  const TileContext<PS, N> ctx{triangles,
-                               shader,
-                               state.format,
-                               kernel,
-                               {fb.colorPlane().data(), fb.depthPlane().data(),
-                                fb.hasCounts() ? fb.countPlane().data() : nullptr},
-                               fb.width(),
-                               fb.height()};
-  detail::withCompareOp(state.depth.compare, [&](auto op) {
-    detail::withFlag(state.depth.write, [&](auto depthWrite) {
-      detail::withFlag(state.colorWrite, [&](auto colorWrite) {
-        detail::withFlag(state.depth.early, [&](auto early) {
-          using Merge = MergeConfig<decltype(op)::value, decltype(depthWrite)::value,
-                                    decltype(colorWrite)::value, decltype(early)::value>;
-          tbb::combinable<PipelineStatistics> perTask;
-          tbb::parallel_for(tbb::blocked_range<int>(0, bins.tileCount(), 8),
-                            [&](const tbb::blocked_range<int>& tiles) {
-            PipelineStatistics& local = perTask.local();
-            for (int tile = tiles.begin(); tile != tiles.end(); ++tile)
-              rasterizeTile<PS, Merge>(tile % bins.tilesX(), tile / bins.tilesX(),
-                                       bins.bin(tile), ctx, local);
-          });
-          perTask.combine_each([&](const PipelineStatistics& s) { stats += s; });
-        });
-      });
-    });
+  BackEndConfig cfg;
+  cfg.format = state.format;
+  cfg.kernel = kernel;
+  cfg.samples = SamplePattern::forCount(fb.samples());
+  cfg.compare = state.depth.compare;
+  cfg.depthTest = depthTestFor(state.depth.compare);
+  cfg.depthWrite = state.depth.write;
+  cfg.colorWrite = state.colorWrite;
+  cfg.earlyDepth = state.depth.early;
+  cfg.target = {fb.colorPlane().data(), fb.depthPlane().data(),
+                fb.hasCounts() ? fb.countPlane().data() : nullptr};
+  cfg.width = fb.width();
+  cfg.height = fb.height();
+
+  tbb::combinable<PipelineStatistics> perTask;
+  tbb::parallel_for(tbb::blocked_range<int>(0, bins.tileCount(), 8),
+                    [&](const tbb::blocked_range<int>& tiles) {
+    PipelineStatistics& local = perTask.local();
+    TileBuffer buffer;
+    for (int tile = tiles.begin(); tile != tiles.end(); ++tile)
+      rasterizeTile<PS, N>(tile % bins.tilesX(), tile / bins.tilesX(), bins.bin(tile), triangles,
+                           shader, cfg, buffer, local);
   });
+  perTask.combine_each([&](const PipelineStatistics& s) { stats += s; });
 }
 
 }  // namespace rast

@@ -20,20 +20,33 @@ inline constexpr CoverageMask kFullMask = ~CoverageMask{0};
 
 constexpr int coverageBit(int localX, int localY) { return localY * kTileSize + localX; }
 
+// Set bits of a mask. Written out because the baseline x86-64 target has no popcnt instruction
+// and std::popcount becomes a library call there; this is a dozen inline operations.
+constexpr int popcount64(uint64_t x) {
+  x = x - ((x >> 1) & 0x5555555555555555ull);
+  x = (x & 0x3333333333333333ull) + ((x >> 2) & 0x3333333333333333ull);
+  x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0full;
+  return int((x * 0x0101010101010101ull) >> 56);
+}
+
 // Samples of the tile inside `rect` (the triangle's bounds clipped to viewport and scissor).
 CoverageMask rectMask(const PixelRect& rect, int tileX, int tileY);
 
 // Per sample, the three edge functions evaluated directly in int64_t: the reference every faster
-// kernel is compared with bit for bit. Samples outside `bounds` are not covered.
+// kernel is compared with bit for bit. Samples of pixels outside `bounds` are not covered. The
+// sample of each pixel lies (offsetX, offsetY) subpixels from its centre (MSAA; 0 otherwise).
 CoverageMask coverageScalar(const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
-                            int tileX, int tileY, FixedPointFormat format);
+                            int tileX, int tileY, FixedPointFormat format, int32_t offsetX = 0,
+                            int32_t offsetY = 0);
 
 enum class TileCoverage { Outside, Inside, Partial };
 
 // Whole-tile test from the edge values at the four corner samples of the tile: E is linear, so its
 // extremes over the 64 samples lie at those corners. Outside: some edge is negative at all four.
-// Inside: every edge is >= 0 at all four and the tile lies inside `bounds`.
+// Inside: every edge is >= 0 at all four and the tile lies inside `bounds`. With `reach` > 0 the
+// corners move out by `reach` subpixels, so the answer holds for every sample within `reach` of
+// a pixel centre (all samples of an MSAA pattern).
 TileCoverage classifyTile(const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
-                          int tileX, int tileY, FixedPointFormat format);
+                          int tileX, int tileY, FixedPointFormat format, int32_t reach = 0);
 
 }  // namespace rast

@@ -128,14 +128,15 @@ bool findCoverageKernel(std::string_view name, CoverageKernel& out) {
 
 TileCoverageResult coverTile(const CoverageKernel& kernel,
                              const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
-                             int tileX, int tileY, FixedPointFormat format) {
+                             int tileX, int tileY, FixedPointFormat format,
+                             int32_t offsetX, int32_t offsetY) {
   // Per edge, from its exact int64 value at the tile's first sample: all 64 samples inside or
   // all outside (no per-sample work), or the edge's values over the tile span
   // 7 * (|dx| + |dy|) across zero. When that span is below 2^31, every value over the tile is an
   // int32 (lo < 0 <= hi and hi - lo = 7(|dx| + |dy|)), and 32-bit lanes are exact. Longer edges
   // (beyond ~1.2M pixels in 24.4, ~4,600 in 16.8) take the int64 reference path.
-  const int64_t sx0 = pixelCentreSubpixels(tileX * kTileSize, format);
-  const int64_t sy0 = pixelCentreSubpixels(tileY * kTileSize, format);
+  const int64_t sx0 = pixelCentreSubpixels(tileX * kTileSize, format) + offsetX;
+  const int64_t sy0 = pixelCentreSubpixels(tileY * kTileSize, format) + offsetY;
   const int64_t step = format.subpixelsPerPixel();
   // Edges that always pass (inside over the whole tile) are listed as the constant 0.
   TileEdgeSteps steps{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, 0};
@@ -160,7 +161,8 @@ TileCoverageResult coverTile(const CoverageKernel& kernel,
   if (steps.count == 0 && !needsWide)
     return {inRect, inRect == kFullMask ? TileCoverage::Inside : TileCoverage::Partial};
   if (needsWide || !kernel.simd)
-    return {coverageScalar(edges, bounds, tileX, tileY, format), TileCoverage::Partial};
+    return {coverageScalar(edges, bounds, tileX, tileY, format, offsetX, offsetY),
+            TileCoverage::Partial};
   return {kernel.simd(steps) & inRect, TileCoverage::Partial};
 }
 

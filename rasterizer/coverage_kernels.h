@@ -44,9 +44,11 @@ struct TileCoverageResult {
 };
 
 // Coverage of one tile with the given kernel, and whether whole-tile tests decided it. The mask
-// equals coverageScalar for every kernel; the kind equals classifyTile's.
+// equals coverageScalar's (with the same sample offset) for every kernel; the kind equals
+// classifyTile's when the offset is 0.
 TileCoverageResult coverTile(const CoverageKernel& kernel,
                              const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
-                             int tileX, int tileY, FixedPointFormat format);
+                             int tileX, int tileY, FixedPointFormat format, int32_t offsetX = 0,
+                             int32_t offsetY = 0);
 
 }  // namespace rast

@@ -56,9 +56,16 @@ struct FixedPointFormat {
 // be finite; values beyond the guard band (possible only by a rounding ulp after clipping) are
 // clamped so the bound in the header comment always holds.
 inline int32_t snapToSubpixels(double windowCoordinate, FixedPointFormat format) {
-  const double scaled = std::nearbyint(std::ldexp(windowCoordinate, format.fractionBits));
+  // Scaling by 2^F is exact (a power of two), and clamping to the integer limit before rounding
+  // gives what clamping after would.
+  const double scaled = windowCoordinate * double(format.subpixelsPerPixel());
   const double limit = format.guardBandSubpixels();
-  return int32_t(scaled < -limit ? -limit : (scaled > limit ? limit : scaled));
+  const double clamped = scaled < -limit ? -limit : (scaled > limit ? limit : scaled);
+  // |clamped| <= 2^26: adding and removing 1.5 * 2^52 leaves no fraction bits, so the first sum
+  // rounds to an integer in the current (default: nearest, ties to even) mode, as nearbyint does,
+  // without a library call.
+  const double rounded = (clamped + 0x1.8p52) - 0x1.8p52;
+  return int32_t(rounded);
 }
 
 // Position of the centre of pixel `p` on the subpixel grid: p + 1/2 pixel.
@@ -67,7 +74,7 @@ inline int64_t pixelCentreSubpixels(int p, FixedPointFormat format) {
 }
 
 inline double subpixelsToPixels(int64_t v, FixedPointFormat format) {
-  return std::ldexp(double(v), -format.fractionBits);
+  return double(v) / double(format.subpixelsPerPixel());  // exact: |v| < 2^53, a power of two
 }
 
 }  // namespace rast

@@ -20,7 +20,7 @@ int lastPixelAtOrBefore(int64_t hi, FixedPointFormat f) {
 }  // namespace
 
 SetupOutcome setupCoverage(const std::array<SnappedPoint, 3>& v, const PixelRect& clip,
-                           FixedPointFormat format, CoverageSetup& out) {
+                           FixedPointFormat format, CoverageSetup& out, int32_t sampleReach) {
   // Twice the signed area with y down: positive for a clockwise triangle on screen.
   const int64_t area = (int64_t(v[1].x) - v[0].x) * (int64_t(v[2].y) - v[0].y) -
                        (int64_t(v[2].x) - v[0].x) * (int64_t(v[1].y) - v[0].y);
@@ -34,10 +34,10 @@ SetupOutcome setupCoverage(const std::array<SnappedPoint, 3>& v, const PixelRect
   out.edges = {EdgeFunction::through(p0, p1), EdgeFunction::through(p1, p2),
                EdgeFunction::through(p2, p0)};
 
-  const int64_t minX = std::min({v[0].x, v[1].x, v[2].x});
-  const int64_t maxX = std::max({v[0].x, v[1].x, v[2].x});
-  const int64_t minY = std::min({v[0].y, v[1].y, v[2].y});
-  const int64_t maxY = std::max({v[0].y, v[1].y, v[2].y});
+  const int64_t minX = std::min({v[0].x, v[1].x, v[2].x}) - sampleReach;
+  const int64_t maxX = std::max({v[0].x, v[1].x, v[2].x}) + sampleReach;
+  const int64_t minY = std::min({v[0].y, v[1].y, v[2].y}) - sampleReach;
+  const int64_t maxY = std::max({v[0].y, v[1].y, v[2].y}) + sampleReach;
   const PixelRect box{firstPixelAtOrAfter(minX, format), firstPixelAtOrAfter(minY, format),
                       lastPixelAtOrBefore(maxX, format) + 1, lastPixelAtOrBefore(maxY, format) + 1};
   out.bounds = box.intersect(clip);

@@ -26,7 +26,9 @@ struct CoverageSetup {
 
 // `v` are the snapped vertices in submission order. When they run counter-clockwise on screen, the
 // edges are built for the order (v0, v2, v1) so that the interior is positive; `reordered` says so.
+// `sampleReach`: how far (subpixels, per axis) a pixel's samples lie from its centre (MSAA), so
+// the bounds take in every pixel with a sample inside the vertices' bounding box.
 SetupOutcome setupCoverage(const std::array<SnappedPoint, 3>& v, const PixelRect& clip,
-                           FixedPointFormat format, CoverageSetup& out);
+                           FixedPointFormat format, CoverageSetup& out, int32_t sampleReach = 0);
 
 }  // namespace rast
