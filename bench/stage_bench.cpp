@@ -210,8 +210,9 @@ void BM_MergeConstantColor(benchmark::State& state) {
   for (auto _ : state) {
     tile.depth[0].fill(1.0f);
     for (const SetupTriangle<0>& t : tris) {
-      depthLanes(t, 0, 0, 0.0f, 0.0f, z);
-      const CoverageMask pass = depthTestLanes<CompareOp::Less>(z, tile.depth[0], kFullMask);
+      depthLanes(t, 0, 0, 0.0f, 0.0f, 0, kTileSize, z);
+      const CoverageMask pass =
+          depthTestLanes<CompareOp::Less>(z, tile.depth[0], kFullMask, 0, kTileSize);
       const CoverageMask kept = shadePixels(t, 0, 0, pass, ps, shaded, stats);
       copyLanesWhere(kept, z, tile.depth[0]);
       copyLanesWhere(kept, shaded, tile.color[0]);

@@ -1,5 +1,7 @@
 #include "pipeline/bin.h"
 
+#include <algorithm>
+
 namespace rast {
 
 TileBins::TileBins(int widthPixels, int heightPixels)
@@ -18,14 +20,30 @@ void TileBins::addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>&
     out.push_back({uint32_t(ty0 * tilesX_ + tx0), triangle});
     return;
   }
+  // classifyTile's Outside test, stepped from tile to tile: per edge, its largest value over a
+  // tile's (reach-widened) sample rectangle is E at the rectangle's corner plus a constant.
+  const int64_t span = (int64_t(kTileSize - 1) << format.fractionBits) + 2 * int64_t(sampleReach);
+  const int64_t tileStep = int64_t(kTileSize) << format.fractionBits;
+  std::array<int64_t, 3> rowStart, stepX, stepY, highest;
+  const int64_t sx0 = pixelCentreSubpixels(tx0 * kTileSize, format) - sampleReach;
+  const int64_t sy0 = pixelCentreSubpixels(ty0 * kTileSize, format) - sampleReach;
+  for (int i = 0; i < 3; ++i) {
+    rowStart[i] = edges[i].at(sx0, sy0);
+    stepX[i] = edges[i].a * tileStep;
+    stepY[i] = edges[i].b * tileStep;
+    highest[i] = std::max<int64_t>(edges[i].a * span, 0) + std::max<int64_t>(edges[i].b * span, 0);
+  }
   for (int ty = ty0; ty <= ty1; ++ty) {
+    std::array<int64_t, 3> e = rowStart;
     for (int tx = tx0; tx <= tx1; ++tx) {
-      if (classifyTile(edges, bounds, tx, ty, format, sampleReach) == TileCoverage::Outside) {
+      if (e[0] + highest[0] < 0 || e[1] + highest[1] < 0 || e[2] + highest[2] < 0) {
         ++stats.tilesTriviallyRejected;
-        continue;
+      } else {
+        out.push_back({uint32_t(ty * tilesX_ + tx), triangle});
       }
-      out.push_back({uint32_t(ty * tilesX_ + tx), triangle});
+      for (int i = 0; i < 3; ++i) e[i] += stepX[i];
     }
+    for (int i = 0; i < 3; ++i) rowStart[i] += stepY[i];
   }
 }
 

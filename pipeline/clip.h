@@ -61,12 +61,28 @@ ClippedVertex<N> intersect(const ClippedVertex<N>& p, const DoubleDouble& dp,
 
 }  // namespace detail
 
+// Whether dot(plane, p) < 0, exactly. A floating-point filter first: the plain double sum of
+// four products is within gamma_4 * sum|terms| (gamma_4 ~ 4 * 2^-53) of the exact value, plus at
+// most 2^-1072 from underflowed products, so beyond 2^-50 * sum|terms| + 2^-1000 its sign is the
+// exact sign. Only vertices that close to a plane pay for the double-double sum. (An overflowed
+// product makes the bound infinite, which also falls through to the exact sum.)
+inline bool isOutside(const ClipPlane& plane, const glm::dvec4& p) {
+  const double t0 = plane[0] * p[0], t1 = plane[1] * p[1], t2 = plane[2] * p[2],
+               t3 = plane[3] * p[3];
+  const double d = ((t0 + t1) + t2) + t3;
+  const double bound =
+      (((std::abs(t0) + std::abs(t1)) + std::abs(t2)) + std::abs(t3)) * 0x1p-50 + 0x1p-1000;
+  if (d > bound) return false;
+  if (d < -bound) return true;
+  return signedDistance(plane, p) < 0;
+}
+
 // Which of the planes each vertex is outside of, one bit per plane.
 template <size_t P>
 unsigned outsideMask(const std::array<ClipPlane, P>& planes, const glm::dvec4& position) {
   unsigned mask = 0;
   for (size_t i = 0; i < P; ++i)
-    if (signedDistance(planes[i], position) < 0) mask |= 1u << i;
+    if (isOutside(planes[i], position)) mask |= 1u << i;
   return mask;
 }
 

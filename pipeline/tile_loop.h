@@ -97,14 +97,16 @@ inline uint64_t packLaneBytes(const uint8_t* lanes) {
 }
 
 // The depth test of 64 lanes, specialised on the compare op; returns the lanes of `mask` that pass.
+// Only rows [rowBegin, rowEnd) are read: the rows `mask` touches.
 using DepthTestFn = CoverageMask (*)(const TileLanes<float>& z, const TileLanes<float>& stored,
-                                     CoverageMask mask);
+                                     CoverageMask mask, int rowBegin, int rowEnd);
 
 template <CompareOp Op>
 CoverageMask depthTestLanes(const TileLanes<float>& z, const TileLanes<float>& stored,
-                            CoverageMask mask) {
-  alignas(64) uint8_t pass[kTileLanes];
-  for (int i = 0; i < kTileLanes; ++i) pass[i] = depthPasses<Op>(z[i], stored[i]) ? 1 : 0;
+                            CoverageMask mask, int rowBegin, int rowEnd) {
+  alignas(64) uint8_t pass[kTileLanes] = {};
+  for (int i = rowBegin * kTileSize; i < rowEnd * kTileSize; ++i)
+    pass[i] = depthPasses<Op>(z[i], stored[i]) ? 1 : 0;
   return packLaneBytes(pass) & mask;
 }
 
@@ -142,9 +144,9 @@ struct BackEndConfig {
 // interpolateDepth, so the per-sample and per-pixel paths agree bit for bit.
 template <int N>
 void depthLanes(const SetupTriangle<N>& t, int x0, int y0, float offsetX, float offsetY,
-                TileLanes<float>& z) {
+                int rowBegin, int rowEnd, TileLanes<float>& z) {
   const float dx0 = float(x0 - t.bounds.x0) + offsetX, dy0 = float(y0 - t.bounds.y0) + offsetY;
-  for (int ly = 0; ly < kTileSize; ++ly)
+  for (int ly = rowBegin; ly < rowEnd; ++ly)
     for (int lx = 0; lx < kTileSize; ++lx) {
       const float v = t.depth.at(dx0 + float(lx), dy0 + float(ly));
       z[ly * kTileSize + lx] = v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v);
@@ -252,28 +254,33 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
   const MergeTarget& target = cfg.target;
 
   // Lanes beyond the framebuffer's edge are never covered (bounds stop at the edge) and never
-  // stored; they are filled only to keep every value defined.
+  // stored; they hold a copy of lane 0, a value of the tile's own, so that they cannot widen the
+  // tile's depth bounds.
   auto load = [&](auto* plane, auto& lanes, auto pad) {
-    for (int ly = 0; ly < rows; ++ly)
-      std::memcpy(&lanes[ly * kTileSize], plane + size_t(y0 + ly) * cfg.width + x0,
-                  sizeof(lanes[0]) * size_t(cols));
+    for (int ly = 0; ly < rows; ++ly) {
+      const auto* row = plane + size_t(y0 + ly) * cfg.width + x0;
+      if (cols == kTileSize) std::memcpy(&lanes[ly * kTileSize], row, sizeof(lanes[0]) * kTileSize);
+      else std::memcpy(&lanes[ly * kTileSize], row, sizeof(lanes[0]) * size_t(cols));
+    }
     if (cols < kTileSize || rows < kTileSize)
       for (int ly = 0; ly < kTileSize; ++ly)
         for (int lx = 0; lx < kTileSize; ++lx)
           if (lx >= cols || ly >= rows) lanes[ly * kTileSize + lx] = pad(lanes);
   };
   auto store = [&](auto* plane, const auto& lanes) {
-    for (int ly = 0; ly < rows; ++ly)
-      std::memcpy(plane + size_t(y0 + ly) * cfg.width + x0, &lanes[ly * kTileSize],
-                  sizeof(lanes[0]) * size_t(cols));
+    for (int ly = 0; ly < rows; ++ly) {
+      auto* row = plane + size_t(y0 + ly) * cfg.width + x0;
+      if (cols == kTileSize) std::memcpy(row, &lanes[ly * kTileSize], sizeof(lanes[0]) * kTileSize);
+      else std::memcpy(row, &lanes[ly * kTileSize], sizeof(lanes[0]) * size_t(cols));
+    }
   };
   if (depthUsed)
     for (int s = 0; s < S; ++s)
       load(target.depth + s * planeSize, tile.depth[s], [](auto& l) { return l[0]; });
   if (cfg.colorWrite)
     for (int s = 0; s < S; ++s)
-      load(target.color + s * planeSize, tile.color[s], [](auto&) { return PackedColor{0}; });
-  if (counting) load(target.counts, tile.counts, [](auto&) { return uint32_t{0}; });
+      load(target.color + s * planeSize, tile.color[s], [](auto& l) { return l[0]; });
+  if (counting) load(target.counts, tile.counts, [](auto& l) { return l[0]; });
 
   const bool shade = cfg.colorWrite || PS::kMayDiscard;
   // Depth tested before shading: always when no shader runs, else when early depth is on.
@@ -327,13 +334,20 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
       if (!stored.valid) {
         stored = {std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
                   false, true};
-        for (int s = 0; s < S; ++s)
-          for (CoverageMask m = validLanes; m; m &= m - 1) {
-            const float d = tile.depth[s][std::countr_zero(m)];
-            stored.hasNaN |= d != d;
-            stored.min = d < stored.min ? d : stored.min;
-            stored.max = d > stored.max ? d : stored.max;
+        for (int s = 0; s < S; ++s) {
+          // All 64 lanes: the padding lanes of an edge tile hold one of the tile's own stored
+          // values (see load), so they cannot widen the bounds beyond what the tile holds.
+          float mn = stored.min, mx = stored.max;
+          int nan = 0;
+          for (const float d : tile.depth[s]) {
+            nan |= d != d;
+            mn = d < mn ? d : mn;
+            mx = d > mx ? d : mx;
           }
+          stored.min = mn;
+          stored.max = mx;
+          stored.hasNaN |= nan != 0;
+        }
       }
       if (allFail(cfg.compare, triMin, triMax, stored)) {
         stats.depthTestsFailed += covered;
@@ -341,15 +355,19 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
       }
     }
 
+    // Rows the triangle covers here: small triangles touch few, and only those are evaluated.
+    const int rowBegin = std::countr_zero(anySample) / kTileSize;
+    const int rowEnd = (kTileLanes - 1 - std::countl_zero(anySample)) / kTileSize + 1;
     if (depthUsed)
       for (int s = 0; s < S; ++s)
-        depthLanes(t, x0, y0, cfg.samples.offsetXPixels(s), cfg.samples.offsetYPixels(s), z[s]);
+        depthLanes(t, x0, y0, cfg.samples.offsetXPixels(s), cfg.samples.offsetYPixels(s),
+                   rowBegin, rowEnd, z[s]);
 
     auto depthTest = [&] {
       uint64_t passed = 0;
       anySample = 0;
       for (int s = 0; s < S; ++s) {
-        mask[s] = cfg.depthTest(z[s], tile.depth[s], mask[s]);
+        mask[s] = cfg.depthTest(z[s], tile.depth[s], mask[s], rowBegin, rowEnd);
         anySample |= mask[s];
         passed += uint64_t(popcount64(mask[s]));
       }
