@@ -205,7 +205,8 @@ void BM_MergeConstantColor(benchmark::State& state) {
   const ConstantColorShader ps;
   TileBuffer tile;
   TileLanes<float> z;
-  TileLanes<PackedColor> shaded;
+  TileLanes<glm::vec4> shaded;
+  TileLanes<PackedColor> packed;
   PipelineStatistics stats;
   for (auto _ : state) {
     tile.depth[0].fill(1.0f);
@@ -215,7 +216,8 @@ void BM_MergeConstantColor(benchmark::State& state) {
           depthTestLanes<CompareOp::Less>(z, tile.depth[0], kFullMask, 0, kTileSize);
       const CoverageMask kept = shadePixels(t, 0, 0, pass, ps, shaded, stats);
       copyLanesWhere(kept, z, tile.depth[0]);
-      copyLanesWhere(kept, shaded, tile.color[0]);
+      for (int i = 0; i < kTileLanes; ++i) packed[i] = packColor(shaded[i]);
+      copyLanesWhere(kept, packed, tile.color[0]);
     }
     benchmark::DoNotOptimize(tile);
   }

@@ -1,6 +1,5 @@
-// The output merger: depth compare, depth write, colour write, fragment counting. Its
-// configuration is a template parameter, fixed per draw, so the per-pixel code holds no branch on
-// state (a disabled depth test reads no depth at all).
+// The output merger's parts: the depth compare (instantiated per compare op, chosen once per
+// draw; see tile_loop.h) and the framebuffer planes the back end writes. Blending: blend.h.
 #pragma once
 
 #include <cstdint>
@@ -22,23 +21,11 @@ constexpr bool depthPasses(float fragment, float stored) {
   else return true;
 }
 
-template <CompareOp Op, bool DepthWrite, bool ColorWrite, bool EarlyDepth>
-struct MergeConfig {
-  static constexpr CompareOp kCompare = Op;
-  static constexpr bool kDepthWrite = DepthWrite;
-  static constexpr bool kColorWrite = ColorWrite;
-  static constexpr bool kEarlyDepth = EarlyDepth;
-  static constexpr bool kDepthRead = Op != CompareOp::Always && Op != CompareOp::Never;
-};
-
 // Raw pointers into the framebuffer's planes, taken once per draw.
 struct MergeTarget {
   PackedColor* color;
   float* depth;
-  // Null when not counting. Counting is an instrumentation output, not pipeline state: one
-  // perfectly predicted test per written fragment instead of a template parameter halves the
-  // number of tile-loop instantiations (build time).
-  uint32_t* counts;
+  uint32_t* counts;  // null when not counting (an instrumentation output, not pipeline state)
 };
 
 }  // namespace rast

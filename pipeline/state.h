@@ -4,6 +4,7 @@
 
 #include <optional>
 
+#include "pipeline/blend.h"
 #include "rasterizer/fixed_point.h"
 #include "rasterizer/pixel_rect.h"
 
@@ -46,7 +47,9 @@ struct PipelineState {
   CullMode cullMode = CullMode::None;
   FrontFace frontFace = FrontFace::CounterClockwise;
   DepthState depth;
-  bool colorWrite = true;
+  bool colorWrite = true;               // false: no colour access at all (a depth-only pass)
+  uint8_t colorWriteMask = kWriteAll;   // channels written when colorWrite is on
+  BlendState blend;
 };
 
 }  // namespace rast

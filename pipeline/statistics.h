@@ -39,6 +39,7 @@ struct PipelineStatistics {
   uint64_t pixelHelperLanes = 0;  // quad lanes interpolated only for derivatives, never shaded
   uint64_t fragmentsDiscarded = 0;
   uint64_t fragmentsWritten = 0;  // passed every test; what the count image counts
+  uint64_t samplesBlended = 0;    // samples merged with the stored colour by blending
 
   template <class F>
   void forEachCounter(F&& f) const;  // f(name, value) for every counter, "stage.counter"
@@ -49,7 +50,7 @@ struct PipelineStatistics {
 };
 
 // Every counter with its name: the one list that JSON, tables and summation all use.
-inline constexpr std::array<std::pair<const char*, uint64_t PipelineStatistics::*>, 24>
+inline constexpr std::array<std::pair<const char*, uint64_t PipelineStatistics::*>, 25>
     kPipelineCounters = {{
     {"vertex.input_indices", &PipelineStatistics::inputIndices},
     {"vertex.shader_invocations", &PipelineStatistics::vertexShaderInvocations},
@@ -75,6 +76,7 @@ inline constexpr std::array<std::pair<const char*, uint64_t PipelineStatistics::
     {"pixel.helper_lanes", &PipelineStatistics::pixelHelperLanes},
     {"pixel.discarded", &PipelineStatistics::fragmentsDiscarded},
     {"merge.fragments_written", &PipelineStatistics::fragmentsWritten},
+    {"merge.samples_blended", &PipelineStatistics::samplesBlended},
 }};
 
 template <class F>

@@ -21,6 +21,7 @@
 #include <tbb/parallel_for.h>
 
 #include "pipeline/bin.h"
+#include "pipeline/blend.h"
 #include "pipeline/front_end.h"
 #include "pipeline/interpolate.h"
 #include "pipeline/merge.h"
@@ -135,6 +136,10 @@ struct BackEndConfig {
   bool depthWrite = false;
   bool colorWrite = false;
   bool earlyDepth = true;
+  // Blending or a partial write mask: the stored colour takes part, per sample.
+  bool colorMerge = false;
+  BlendState blend;
+  uint8_t colorWriteMask = kWriteAll;
   // Framebuffer planes (sample-major) and size.
   MergeTarget target;
   int width = 0, height = 0;
@@ -161,7 +166,7 @@ constexpr bool kTakesDerivatives = requires { requires PS::kDerivatives; };
 // pixels that were not discarded.
 template <PixelShader PS, int N>
 CoverageMask shadePixels(const SetupTriangle<N>& t, int x0, int y0, CoverageMask pixels,
-                         const PS& shader, TileLanes<PackedColor>& out,
+                         const PS& shader, TileLanes<glm::vec4>& out,
                          PipelineStatistics& stats) {
   CoverageMask kept = pixels;
   auto shadeOne = [&](int bit, Fragment<N>& fragment) {
@@ -179,7 +184,7 @@ CoverageMask shadePixels(const SetupTriangle<N>& t, int x0, int y0, CoverageMask
         return;
       }
     }
-    out[bit] = packColor(result.color);
+    out[bit] = result.color;
   };
 
   if constexpr (kTakesDerivatives<PS>) {
@@ -299,7 +304,8 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
   bool depthDirty = false, colorDirty = false, countsDirty = false;
   std::array<CoverageMask, kMaxSamples> mask;
   std::array<TileLanes<float>, kMaxSamples> z;
-  TileLanes<PackedColor> shaded;
+  TileLanes<glm::vec4> shaded;
+  TileLanes<PackedColor> packed;
 
   for (const uint32_t id : bin) {
     const SetupTriangle<N>& t = triangles[id];
@@ -416,7 +422,22 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
       }
     }
     if (cfg.colorWrite) {
-      for (int s = 0; s < S; ++s) copyLanesWhere(mask[s], shaded, tile.color[s]);
+      if (cfg.colorMerge) {
+        for (int s = 0; s < S; ++s) {
+          for (CoverageMask m = mask[s]; m; m &= m - 1) {
+            const int i = std::countr_zero(m);
+            tile.color[s][i] =
+                blendAndPack(shaded[i], tile.color[s][i], cfg.blend, cfg.colorWriteMask);
+          }
+          if (cfg.blend.enable) stats.samplesBlended += uint64_t(popcount64(mask[s]));
+        }
+      } else {
+        for (CoverageMask m = anySample; m; m &= m - 1) {
+          const int i = std::countr_zero(m);
+          packed[i] = packColor(shaded[i]);
+        }
+        for (int s = 0; s < S; ++s) copyLanesWhere(mask[s], packed, tile.color[s]);
+      }
       colorDirty = true;
     }
     if (counting) {
@@ -449,6 +470,9 @@ void runBackEnd(Framebuffer& fb, const PipelineState& state, const TileBins& bin
   cfg.depthWrite = state.depth.write;
   cfg.colorWrite = state.colorWrite;
   cfg.earlyDepth = state.depth.early;
+  cfg.blend = state.blend;
+  cfg.colorWriteMask = state.colorWriteMask;
+  cfg.colorMerge = state.blend.enable || state.colorWriteMask != kWriteAll;
   cfg.target = {fb.colorPlane().data(), fb.depthPlane().data(),
                 fb.hasCounts() ? fb.countPlane().data() : nullptr};
   cfg.width = fb.width();
