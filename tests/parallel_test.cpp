@@ -34,13 +34,18 @@ void expectIdentical(const Frame& a, const Frame& b, const std::string& what) {
   EXPECT_EQ(a.stats, b.stats);
 }
 
-// W1: the Stanford bunny, framed by the workloads' camera, Lambert shading, depth less.
-Frame renderBunny(const Mesh& mesh, const ExecutionOptions& exec) {
-  constexpr int kW = 1920, kH = 1080;
-  Framebuffer fb(kW, kH, true);
+// W1: the Stanford bunny, framed by the workloads' camera, Lambert shading, depth less. With
+// `msaaAndBlend`: 8 samples per pixel and alpha blending at a quarter of the size.
+Frame renderBunny(const Mesh& mesh, const ExecutionOptions& exec, bool msaaAndBlend = false) {
+  const int kW = msaaAndBlend ? 480 : 1920, kH = msaaAndBlend ? 270 : 1080;
+  Framebuffer fb(kW, kH, true, msaaAndBlend ? 8 : 1);
   fb.clear(glm::vec4(0, 0, 0, 1), 1.0f);
   PipelineState state;
   state.viewport = {0, 0, kW, kH};
+  if (msaaAndBlend) {
+    state.blend = BlendState::alphaBlend();
+    state.depth.compare = CompareOp::LessEqual;
+  }
   const Camera camera = frameMesh(mesh);
   const WorldNormalVertexShader vs{glm::mat4(1.0f), camera.viewProjection(float(kW) / kH)};
   const LambertShader ps{glm::vec3(0.85f, 0.8f, 0.7f), glm::vec3(0.08f), camera.eye * 2.0f,
@@ -108,6 +113,23 @@ TEST(ParallelExecution, LayersIdenticalForOneTwoAndFourThreads) {
     EXPECT_EQ(one.stats.fragmentsWritten, frontToBack ? 1920u * 1080 : 16u * 1920 * 1080);
     expectIdentical(one, renderLayers(frontToBack, withThreads(2)), "2 threads");
     expectIdentical(one, renderLayers(frontToBack, withThreads(4)), "4 threads");
+  }
+}
+
+TEST(ParallelExecution, MultisampledBlendedBunnyIdenticalForThreadsAndKernels) {
+  Mesh mesh;
+  ASSERT_TRUE(loadObj(std::string(RASTER_SHARED_MESHES) + "/bunny.obj", mesh));
+  ExecutionOptions reference;
+  reference.threads = 1;
+  ASSERT_TRUE(findCoverageKernel("scalar", reference.coverage));
+  const Frame expected = renderBunny(mesh, reference, true);
+  EXPECT_GT(expected.stats.samplesBlended, 0u);
+  expectIdentical(expected, renderBunny(mesh, withThreads(2), true), "2 threads");
+  expectIdentical(expected, renderBunny(mesh, withThreads(4), true), "4 threads");
+  for (const CoverageKernel& kernel : availableCoverageKernels()) {
+    ExecutionOptions exec;
+    exec.coverage = kernel;
+    expectIdentical(expected, renderBunny(mesh, exec, true), kernel.name);
   }
 }
 
