@@ -307,8 +307,15 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
   TileLanes<glm::vec4> shaded;
   TileLanes<PackedColor> packed;
 
-  for (const uint32_t id : bin) {
-    const SetupTriangle<N>& t = triangles[id];
+  for (size_t b = 0; b < bin.size(); ++b) {
+    const SetupTriangle<N>& t = triangles[bin[b]];
+    // Bins list triangles in submission order, scattered in memory; fetching the next one's
+    // cache lines while this one is worked on hides most of the miss (measured on W1).
+    if (b + 2 < bin.size()) {
+      const char* next = reinterpret_cast<const char*>(&triangles[bin[b + 2]]);
+      for (size_t line = 0; line < sizeof(SetupTriangle<N>); line += 64)
+        __builtin_prefetch(next + line);
+    }
     CoverageMask anySample = 0;
     uint64_t covered = 0;
     for (int s = 0; s < S; ++s) {
