@@ -8,6 +8,7 @@
 //   static constexpr int kVaryings = M;      varyings it reads (M <= N): only these are interpolated
 //   static constexpr bool kMayDiscard;       whether it can return PixelResult::discarded()
 //   PixelResult operator()(const Fragment<M>&) const;
+//   static constexpr bool kDerivatives = true;   optional: the shader reads Fragment::ddx, ddy
 // Shaders are called through templates, so they inline into the stage loops.
 #pragma once
 
@@ -32,6 +33,7 @@ struct ShadedVertex {
 template <int N>
 struct Fragment {
   Varyings<N> varyings;   // perspective-correct
+  Varyings<N> ddx{}, ddy{};  // d(varyings)/dx, /dy on screen; filled for kDerivatives shaders
   int x = 0, y = 0;       // pixel; its centre is (x + 0.5, y + 0.5)
   float depth = 0;        // window depth z/w in [0, 1]
   bool frontFacing = true;
