@@ -112,7 +112,10 @@ Status loadTexture(const std::string& path, Texture& out, ColorEncoding encoding
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) return Status::error(path + ": no such file");
   if (std::filesystem::is_directory(path, ec)) return Status::error(path + ": is a directory");
-  auto in = OIIO::ImageInput::open(path);
+  // Alpha as stored: OpenImageIO would otherwise premultiply the colour of PNGs by it.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
   if (!in)
     return Status::error(path + ": not an image format OpenImageIO can read (" +
                          oneLine(OIIO::geterror()) + ")");

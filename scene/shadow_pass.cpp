@@ -45,7 +45,7 @@ Status fitLightViewProjection(const Light& light, glm::vec3 boxMin, glm::vec3 bo
     }
     // A margin of 1 % keeps the box's own faces off the near and far planes.
     const float pad = 0.01f * radius;
-    out = glm::ortho(lo.x - pad, hi.x + pad, lo.y - pad, hi.y + pad, -hi.z - pad, -lo.z + pad);
+    out = glm::ortho(lo.x - pad, hi.x + pad, lo.y - pad, hi.y + pad, -hi.z - pad, -lo.z + pad) * view;
     return Status::ok();
   }
   glm::vec3 mean(0.0f);

@@ -26,6 +26,7 @@
 // as an image (red: the map shadows a lit point; blue: the map lights a shadowed point).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -101,9 +102,19 @@ TEST(BlinnPhongReference, DefaultSceneMatchesRayTracedShadingAndShadows) {
   const glm::dvec3 eye(scene.camera.eye);
 
   const double reach = 0.5 * std::sqrt(2.0) / 16 + 1e-3;
-  const int lookupRadius = settings.pcf / 2 + 2;
+  const int lookupRadius = settings.pcf / 2;
+  std::vector<int64_t> firstTriangle;  // of each object in the flattened mesh
+  for (int64_t t = 0; const SceneObject& o : scene.objects) {
+    firstTriangle.push_back(t);
+    t += int64_t(o.mesh.triangleCount());
+  }
+  auto objectOf = [&](int64_t triangle) {
+    if (triangle < 0) return -1;
+    return int(std::upper_bound(firstTriangle.begin(), firstTriangle.end(), triangle) -
+               firstTriangle.begin()) - 1;
+  };
   int covered = 0, clear = 0, shadowMismatch = 0, mapShadowsLit = 0, mapLightsShadowed = 0,
-      clearShadowWrong = 0, shadingWrong = 0, truthShadowed = 0;
+      clearShadowWrong = 0, shadingWrong = 0, truthShadowed = 0, shadowMismatchShown = 0;
   double worstExcess = -1;
   std::string firstWrong;
   std::vector<uint8_t> picture(size_t(kWidth) * kHeight * 3, 0);
@@ -119,8 +130,12 @@ TEST(BlinnPhongReference, DefaultSceneMatchesRayTracedShadingAndShadows) {
       truthShadowed += !lit;
       const bool sameTriangle = raster.ids[k] == id;
       const bool mapLit = raster.visible[k] == 255;
+      glm::dvec3 nrm = glm::normalize(sp.normal);
+      if (!sp.frontFacing) nrm = -nrm;
+      const bool facesLight = glm::dot(nrm, glm::normalize(glm::dvec3(light.position) - sp.position)) > 0;
       if (sameTriangle && mapLit != lit) {
         ++shadowMismatch;
+        shadowMismatchShown += facesLight;
         (mapLit ? mapLightsShadowed : mapShadowsLit) += 1;
       }
       uint8_t* rgb = &picture[3 * k];
@@ -144,16 +159,21 @@ TEST(BlinnPhongReference, DefaultSceneMatchesRayTracedShadingAndShadows) {
       if (silhouette) continue;
       const glm::dvec3 lookup = lightCaster.toWindow(sp.position + double(settings.normalOffset) * sp.normal);
       const int tx = int(std::floor(lookup.x)), ty = int(std::floor(lookup.y));
+      const int n = settings.mapSize;
+      auto objectAt = [&](int i, int j) {
+        return i < 0 || j < 0 || i >= n || j >= n ? -1 : objectOf(idealMap.id(i, j));
+      };
       bool agrees = true;
       for (int j = ty - lookupRadius; j <= ty + lookupRadius && agrees; ++j)
         for (int i = tx - lookupRadius; i <= tx + lookupRadius && agrees; ++i) {
-          if (i < 0 || j < 0 || i >= settings.mapSize || j >= settings.mapSize) {
+          if (i < 0 || j < 0 || i >= n || j >= n) {
             agrees = lit;
             continue;
           }
-          const double stored = idealMap.depth[size_t(j) * settings.mapSize + i];
-          const double d = lookup.z - settings.depthBias - stored;
+          const double d = lookup.z - settings.depthBias - idealMap.depth[size_t(j) * n + i];
           agrees = lit ? d < -2e-5 : d > 2e-5;
+          for (int b = -1; b <= 1; ++b)
+            for (int a = -1; a <= 1; ++a) agrees &= objectAt(i + a, j + b) == objectAt(i, j);
         }
       if (!agrees) continue;
       ++clear;
@@ -190,21 +210,23 @@ TEST(BlinnPhongReference, DefaultSceneMatchesRayTracedShadingAndShadows) {
     (void)out->close();
   }
   std::printf("[blinn-phong vs ray tracing] %d covered pixels, %d ray-traced in shadow; shadow map "
-              "disagrees on %d (%.2f%%): %d shadowed but lit, %d lit but shadowed; %d pixels "
-              "compared away from edges and shadow boundaries, worst colour error %.2g below "
-              "its tolerance; picture: %s\n",
+              "disagrees on %d (%.2f%%): %d shadowed but lit, %d lit but shadowed; %d (%.2f%%) "
+              "where it shows (surface facing the light); %d pixels compared away from edges and "
+              "shadow boundaries, worst colour error %.2g below its tolerance; picture: %s\n",
               covered, truthShadowed, shadowMismatch, 100.0 * shadowMismatch / covered,
-              mapShadowsLit, mapLightsShadowed, clear, -worstExcess, path.c_str());
+              mapShadowsLit, mapLightsShadowed, shadowMismatchShown,
+              100.0 * shadowMismatchShown / covered, clear, -worstExcess, path.c_str());
   EXPECT_EQ(clearShadowWrong, 0) << firstWrong;
   EXPECT_EQ(shadingWrong, 0) << firstWrong;
   // The comparison covers most of the picture, shadows included.
   EXPECT_GT(clear, covered * 3 / 4);
   EXPECT_GT(truthShadowed, 1000);
-  // Shadow maps differ from shadow rays only along shadow boundaries (a band about a texel wide,
-  // ~0.1 px to a few px on this screen) and where the biases let light through near contact:
-  // 1 % of the covered pixels is several times what this was written with, while a map off by a
-  // few texels or a missing bias fails it.
-  EXPECT_LT(shadowMismatch, covered / 100);
+  // Shadow maps differ from shadow rays along shadow boundaries (about a texel wide), where the
+  // biases let light through near contact (the bunny's feet) and at the bunny's terminator. When
+  // written: 331 pixels (0.73 %), 207 of them on surfaces facing the light. The budget, 1.2 %,
+  // fails with the earlier, smaller biases (2e-4 and 0.02: 1.62 %, acne on the bunny) and with
+  // a map a few texels off; the shading comparison above is unaffected by either.
+  EXPECT_LT(shadowMismatch, covered * 12 / 1000);
 }
 
 }  // namespace
