@@ -33,21 +33,33 @@ RayCaster::RayCaster(const Mesh& mesh, const glm::mat4& viewProjection, int widt
       inverseViewProjection_(glm::inverse(glm::dmat4(viewProjection))) {
   const size_t count = mesh.triangleCount();
   triangles_.resize(count);
+  normals_.resize(count);
+  bounds_.resize(count);
+  glm::dvec3 meshMin(kInfinity), meshMax(-kInfinity);
   projected_.resize(count);
   finite_.resize(count);
   for (size_t t = 0; t < count; ++t) {
     bool finite = true, inFront = true;
     for (int k = 0; k < 3; ++k) {
-      const glm::dvec3 p(mesh.vertices[mesh.indices[3 * t + k]].position);
+      const MeshVertex& vertex = mesh.vertices[mesh.indices[3 * t + k]];
+      const glm::dvec3 p(vertex.position);
       triangles_[t][k] = p;
+      normals_[t][k] = glm::dvec3(vertex.normal);
       finite = finite && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
       double w = 0;
       projected_[t].window[k] = toWindow(p, &w);
       inFront = inFront && w > 0;
     }
     finite_[t] = finite;
+    bounds_[t] = {glm::min(glm::min(triangles_[t][0], triangles_[t][1]), triangles_[t][2]),
+                  glm::max(glm::max(triangles_[t][0], triangles_[t][1]), triangles_[t][2])};
+    if (finite) {
+      meshMin = glm::min(meshMin, bounds_[t][0]);
+      meshMax = glm::max(meshMax, bounds_[t][1]);
+    }
     projected_[t].inFront = finite && inFront;
   }
+  extent_ = count > 0 && meshMin.x <= meshMax.x ? glm::length(meshMax - meshMin) : 0.0;
 }
 
 glm::dvec3 RayCaster::toWindow(const glm::dvec3& world, double* w) const {
@@ -59,16 +71,21 @@ glm::dvec3 RayCaster::toWindow(const glm::dvec3& world, double* w) const {
           ndc.z * 0.5 + 0.5};
 }
 
-RayCaster::Ray RayCaster::rayThrough(int x, int y) const {
-  const double ndcX = (x + 0.5 - 0.5 * width_) / (0.5 * width_);
-  const double ndcY = (y + 0.5 - 0.5 * height_) / (-0.5 * height_);
+RayCaster::Ray RayCaster::rayThroughPoint(double wx, double wy) const {
+  const double ndcX = (wx - 0.5 * width_) / (0.5 * width_);
+  const double ndcY = (wy - 0.5 * height_) / (-0.5 * height_);
   auto unproject = [&](double ndcZ) {
     const glm::dvec4 p = inverseViewProjection_ * glm::dvec4(ndcX, ndcY, ndcZ, 1.0);
     return glm::dvec3(p) / p.w;
   };
+  const glm::dvec3 origin = unproject(-1.0);
+  return makeRay(origin, unproject(1.0) - origin);
+}
+
+RayCaster::Ray RayCaster::makeRay(const glm::dvec3& origin, const glm::dvec3& direction) {
   Ray ray;
-  ray.origin = unproject(-1.0);
-  ray.direction = unproject(1.0) - ray.origin;
+  ray.origin = origin;
+  ray.direction = direction;
   // Woop et al.: kz is the dominant axis of the direction; kx, ky the others, swapped so the
   // winding is kept when the direction points down kz.
   const glm::dvec3 a = glm::abs(ray.direction);
@@ -82,7 +99,8 @@ RayCaster::Ray RayCaster::rayThrough(int x, int y) const {
   return ray;
 }
 
-bool RayCaster::intersect(const Ray& r, const std::array<glm::dvec3, 3>& v, double& t) {
+bool RayCaster::intersect(const Ray& r, const std::array<glm::dvec3, 3>& v, double& t,
+                          double tMin, glm::dvec3* barycentric) {
   // Vertices relative to the ray origin, sheared so the ray runs along +z through (0, 0).
   const glm::dvec3 a = v[0] - r.origin, b = v[1] - r.origin, c = v[2] - r.origin;
   const double ax = a[r.kx] - r.sx * a[r.kz], ay = a[r.ky] - r.sy * a[r.kz];
@@ -98,8 +116,9 @@ bool RayCaster::intersect(const Ray& r, const std::array<glm::dvec3, 3>& v, doub
   if (det == 0) return false;  // the ray lies in the triangle's plane, or it is degenerate
   const double az = r.sz * a[r.kz], bz = r.sz * b[r.kz], cz = r.sz * c[r.kz];
   const double tt = (u * az + vv * bz + w * cz) / det;
-  if (!(tt >= 0.0 && tt <= 1.0)) return false;  // before the near or beyond the far plane
+  if (!(tt >= tMin && tt <= 1.0)) return false;  // before the near or beyond the far plane
   t = tt;
+  if (barycentric) *barycentric = glm::dvec3(u, vv, w) / det;
   return true;
 }
 
@@ -229,6 +248,71 @@ double RayCaster::windowDepth(uint32_t triangle, double x, double y) const {
   const glm::dvec2 g = depthGradient(triangle);
   const glm::dvec3& v0 = projected_[triangle].window[0];
   return v0.z + g.x * (x - v0.x) + g.y * (y - v0.y);
+}
+
+}  // namespace rast::reference
+
+namespace rast::reference {
+
+bool RayCaster::surfaceAt(uint32_t triangle, double wx, double wy, SurfacePoint& out) const {
+  const Ray ray = rayThroughPoint(wx, wy);
+  const std::array<glm::dvec3, 3>& v = triangles_[triangle];
+  const glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
+  const double denom = glm::dot(n, ray.direction);
+  if (denom == 0 || !finite_[triangle]) return false;
+  const glm::dvec3 p = ray.origin + ray.direction * (glm::dot(n, v[0] - ray.origin) / denom);
+  // Barycentrics of p in the plane, by areas against the full normal (signed, so they extend
+  // past the edges linearly).
+  const double n2 = glm::dot(n, n);
+  const double b0 = glm::dot(n, glm::cross(v[1] - p, v[2] - p)) / n2;
+  const double b1 = glm::dot(n, glm::cross(v[2] - p, v[0] - p)) / n2;
+  const double b2 = 1.0 - b0 - b1;
+  out.triangle = triangle;
+  out.position = p;
+  out.normal = b0 * normals_[triangle][0] + b1 * normals_[triangle][1] + b2 * normals_[triangle][2];
+  // Counter-clockwise on the image (y down): the projected signed area is negative.
+  const Projected& pr = projected_[triangle];
+  const glm::dvec3 e1 = pr.window[1] - pr.window[0], e2 = pr.window[2] - pr.window[0];
+  out.frontFacing = e1.x * e2.y - e1.y * e2.x < 0;
+  return true;
+}
+
+bool RayCaster::occluded(const glm::dvec3& from, const Light& light, int64_t ignore) const {
+  const glm::dvec3 direction = light.kind == Light::Kind::Point
+                                   ? glm::dvec3(light.position) - from
+                                   : -glm::normalize(glm::dvec3(light.direction)) * (2.0 * extent_);
+  const Ray ray = makeRay(from, direction);
+  const glm::dvec3 lo = glm::min(from, from + direction), hi = glm::max(from, from + direction);
+  // Hits closer than 1e-9 of the segment are the surface the ray leaves (a neighbour sharing
+  // the point's edge), not an occluder.
+  constexpr double kMinT = 1e-9;
+  for (uint32_t i = 0; i < triangles_.size(); ++i) {
+    if (int64_t(i) == ignore || !finite_[i]) continue;
+    const auto& b = bounds_[i];
+    if (b[1].x < lo.x || b[0].x > hi.x || b[1].y < lo.y || b[0].y > hi.y || b[1].z < lo.z ||
+        b[0].z > hi.z)
+      continue;
+    double t;
+    if (intersect(ray, triangles_[i], t, kMinT)) return true;
+  }
+  return false;
+}
+
+glm::dvec3 RayCaster::shadeBlinnPhong(const SurfacePoint& p, const BlinnPhongMaterial& material,
+                                      const Light& light, const glm::dvec3& eye,
+                                      double visibility) {
+  glm::dvec3 n = glm::normalize(p.normal);
+  if (!p.frontFacing) n = -n;
+  const glm::dvec3 l = light.kind == Light::Kind::Point
+                           ? glm::normalize(glm::dvec3(light.position) - p.position)
+                           : -glm::dvec3(light.direction);
+  const glm::dvec3 h = glm::normalize(l + glm::normalize(eye - p.position));
+  const double diffuse = std::max(glm::dot(n, l), 0.0);
+  const double specular =
+      diffuse > 0 ? std::pow(std::max(glm::dot(n, h), 0.0), double(material.shininess)) : 0.0;
+  const glm::dvec3 albedo(material.albedo);
+  return glm::dvec3(light.ambient) * albedo +
+         visibility * glm::dvec3(light.color) * (albedo * diffuse + glm::dvec3(material.specular) * specular);
 }
 
 }  // namespace rast::reference

@@ -28,6 +28,7 @@
 
 #include "scene/camera.h"
 #include "scene/mesh.h"
+#include "shaders_cpp/blinn_phong.h"
 
 namespace rast::reference {
 
@@ -37,6 +38,15 @@ struct RayCastImage {
   std::vector<double> depth;  // window depth (0.5 * z/w + 0.5) of that hit, 1 where none;
                               // empty unless asked for
   int64_t id(int x, int y) const { return ids[size_t(y) * size_t(width) + size_t(x)]; }
+};
+
+// A point on a triangle's surface: position and interpolated vertex normal (not normalised),
+// both from the hit's barycentric coordinates, as the rasterizer interpolates its varyings.
+struct SurfacePoint {
+  int64_t triangle = -1;
+  glm::dvec3 position{0.0};
+  glm::dvec3 normal{0.0};
+  bool frontFacing = true;  // the triangle is counter-clockwise on the image (OpenGL's front)
 };
 
 struct RayHit {
@@ -91,19 +101,38 @@ class RayCaster {
   double windowDepth(uint32_t triangle, double x, double y) const;
   glm::dvec2 depthGradient(uint32_t triangle) const;
 
+  // ---- Shading (Blinn-Phong with shadow rays, the formula of shaders_cpp/blinn_phong.h) ----
+
+  // Where the ray through window point (wx, wy) meets the plane of `triangle`, extended beyond
+  // its edges (barycentrics may be negative): the surface a rasterizer's interpolation sees at
+  // that point. False where the ray is parallel to the plane.
+  bool surfaceAt(uint32_t triangle, double wx, double wy, SurfacePoint& out) const;
+  // Whether any triangle other than `ignore` crosses the open segment from `from` towards the
+  // light (to the point light, or 2x the mesh's extent against a directional light's direction).
+  bool occluded(const glm::dvec3& from, const Light& light, int64_t ignore) const;
+  // The Blinn-Phong colour of a surface point seen from `eye`, lit (visibility 1) or shadowed (0).
+  static glm::dvec3 shadeBlinnPhong(const SurfacePoint& p, const BlinnPhongMaterial& material,
+                                    const Light& light, const glm::dvec3& eye, double visibility);
+
  private:
   struct Ray {
     glm::dvec3 origin, direction;  // origin on the near plane; origin + direction on the far plane
     int kx, ky, kz;                // axis permutation of the watertight test
     double sx, sy, sz;             // shear constants
   };
-  Ray rayThrough(int x, int y) const;
-  // Watertight test; on a hit writes t in [0, 1].
-  static bool intersect(const Ray& ray, const std::array<glm::dvec3, 3>& v, double& t);
+  Ray rayThrough(int x, int y) const { return rayThroughPoint(x + 0.5, y + 0.5); }
+  Ray rayThroughPoint(double wx, double wy) const;
+  static Ray makeRay(const glm::dvec3& origin, const glm::dvec3& direction);
+  // Watertight test; on a hit writes t in [tMin, 1] (and the barycentrics, if asked).
+  static bool intersect(const Ray& ray, const std::array<glm::dvec3, 3>& v, double& t,
+                        double tMin = 0.0, glm::dvec3* barycentric = nullptr);
 
   int width_, height_;
   glm::dmat4 viewProjection_, inverseViewProjection_;
   std::vector<std::array<glm::dvec3, 3>> triangles_;  // world space
+  std::vector<std::array<glm::dvec3, 3>> normals_;    // the vertices' normals
+  std::vector<std::array<glm::dvec3, 2>> bounds_;     // world-space box of each triangle
+  double extent_ = 0;                                 // diagonal of the mesh's box
   std::vector<Projected> projected_;
   std::vector<bool> finite_;
 };

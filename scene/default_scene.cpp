@@ -2,6 +2,7 @@
 
 #include "pipeline/draw.h"
 #include "scene/scene.h"
+#include "scene/shadow_pass.h"
 #include "shaders_cpp/constant_color.h"
 #include "shaders_cpp/depth_visualizer.h"
 #include "shaders_cpp/lambert.h"
@@ -46,6 +47,7 @@ bool parseShadingMode(const std::string& name, ShadingMode& out) {
   else if (name == "depth") out = ShadingMode::Depth;
   else if (name == "triangle-id") out = ShadingMode::TriangleId;
   else if (name == "constant") out = ShadingMode::Constant;
+  else if (name == "blinn-phong") out = ShadingMode::BlinnPhong;
   else return false;
   return true;
 }
@@ -82,6 +84,7 @@ Mesh flattenScene(const Scene& scene) {
 
 Status renderScene(const Scene& scene, Framebuffer& fb, const PipelineState& state,
                    ShadingMode shading, PipelineStatistics& stats, const ExecutionOptions& exec) {
+  if (shading == ShadingMode::BlinnPhong) return renderSceneBlinnPhong(scene, fb, state, stats, exec);
   const CompareOp op = state.depth.compare;
   const bool reversed = op == CompareOp::Greater || op == CompareOp::GreaterEqual;
   fb.clear(shading == ShadingMode::TriangleId ? glm::vec4(0, 0, 0, 1) : scene.background,
@@ -109,6 +112,8 @@ Status renderScene(const Scene& scene, Framebuffer& fb, const PipelineState& sta
       case ShadingMode::Constant:
         s = drawObject(fb, state, object, viewProjection,
                        ConstantColorShader{glm::vec4(object.albedo, 1.0f)}, stats, exec);
+        break;
+      case ShadingMode::BlinnPhong:  // drawn by renderSceneBlinnPhong, above
         break;
     }
     if (!s) return s;

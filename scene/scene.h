@@ -31,7 +31,8 @@ struct Scene {
 };
 
 // What the pixel shader shows.
-enum class ShadingMode { Lambert, Normals, Depth, TriangleId, Constant };
+// BlinnPhong: shadow-mapped Blinn-Phong from the scene's point light (scene/shadow_pass.h).
+enum class ShadingMode { Lambert, Normals, Depth, TriangleId, Constant, BlinnPhong };
 bool parseShadingMode(const std::string& name, ShadingMode& out);
 
 // The reference text's scene: a green triangle floating over a ground plane, lit by a point

@@ -180,8 +180,8 @@ int main(int argc, char** argv) {
                  "identical for any");
   app.add_flag("--list-kernels", o.listKernels, "Print the coverage kernels this machine runs");
   app.add_option("--shading", o.shading,
-                 "lambert, normals, depth, triangle-id or constant (default: lambert for meshes, "
-                 "constant for triangle lists)");
+                 "lambert, normals, depth, triangle-id, constant or blinn-phong (shadow-mapped; "
+                 "default: lambert for meshes, constant for triangle lists)");
   app.add_option("-o,--output", o.output, "Colour image (PNG)");
   app.add_option("--depth-output", o.depthOutput, "Depth image (32-bit float EXR)");
   app.add_option("--count-output", o.countOutput,
