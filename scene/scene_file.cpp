@@ -184,8 +184,10 @@ Json number(float v) {
 Json array(glm::vec3 v) { return Json::array({number(v.x), number(v.y), number(v.z)}); }
 Json array(glm::vec4 v) { return Json::array({number(v.x), number(v.y), number(v.z), number(v.w)}); }
 
-// ---- Per-draw pipeline state: one entry per key. A new state field (a depth format, MSAA
-// samples, blending) is one line here with the codec of its type.
+// ---- Per-draw pipeline state: one entry per key. A new state field is one line in
+// stateFields() with the codec of its type, e.g.
+//   integerField("samples", [](auto& s) -> auto& { return s.samples; }, {1, 2, 4, 8}),
+//   choiceField("depth_format", [](auto& s) -> auto& { return s.depthFormat; }, kDepthFormats),
 
 struct StateField {
   const char* key;
@@ -202,6 +204,23 @@ StateField choiceField(const char* key, Get get, const Names<T>& names) {
 template <class Get>
 StateField boolField(const char* key, Get get) {
   return {key, [get](const Node& n, PipelineState& s) { get(s) = n.boolean(); },
+          [get](const PipelineState& s) { return Json(get(s)); }};
+}
+
+// For counts such as MSAA samples: an integer from `allowed`.
+template <class Get>
+StateField integerField(const char* key, Get get, std::vector<int> allowed) {
+  return {key,
+          [get, allowed](const Node& n, PipelineState& s) {
+            for (int a : allowed)
+              if (n.json().is_number_integer() && n.json().get<int64_t>() == a) {
+                get(s) = a;
+                return;
+              }
+            std::string list;
+            for (int a : allowed) list += (list.empty() ? "" : ", ") + std::to_string(a);
+            n.expected("one of " + list);
+          },
           [get](const PipelineState& s) { return Json(get(s)); }};
 }
 
