@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
-#include <regex>
 
 #include "debug/report.h"
 #include "tool_process.h"
@@ -48,16 +47,15 @@ PageCounts openInBrowser(const std::filesystem::path& html, const TempFolder& di
                    "--virtual-time-budget=5000", "--dump-dom", "file://" + html.string()},
       dir);
   EXPECT_EQ(r.exitCode, 0) << r.err;
-  std::smatch m;
-  const std::regex body(R"(<body ([^>]*)>)");
-  if (!std::regex_search(r.out, m, body)) {
+  const size_t body = r.out.find("<body ");
+  if (body == std::string::npos) {
     ADD_FAILURE() << "no <body> in chromium's output: " << r.out.substr(0, 500) << r.err.substr(0, 500);
     return c;
   }
-  const std::string attributes = m[1];
+  const std::string attributes = r.out.substr(body, r.out.find('>', body) - body);
   auto read = [&](const std::string& name) {
-    std::smatch v;
-    return std::regex_search(attributes, v, std::regex(name + R"(=\"(\d+)\")")) ? std::stoi(v[1]) : -1;
+    const size_t at = attributes.find(name + "=\"");
+    return at == std::string::npos ? -1 : std::atoi(attributes.c_str() + at + name.size() + 2);
   };
   c.imagesLoaded = read("data-images-loaded");
   c.tablesFilled = read("data-tables-filled");
