@@ -16,6 +16,7 @@
 #include <cstring>
 
 #include "pipeline/shader.h"
+#include "pipeline/statistics.h"
 #include "pipeline/viewport.h"
 
 namespace rast {
@@ -87,10 +88,12 @@ unsigned outsideMask(const std::array<ClipPlane, P>& planes, const glm::dvec4& p
 }
 
 // Clips the triangle against the planes whose bits are set in `planeMask`. The polygon keeps the
-// triangle's winding; it has 0 or 3..kMaxClipVertices vertices.
+// triangle's winding; it has 0 or 3..kMaxClipVertices vertices. `stats`, when given, counts the
+// polygons into and out of each plane.
 template <int N>
 void clipTriangle(const std::array<const ShadedVertex<N>*, 3>& tri, const ClipPlanes& planes,
-                  unsigned planeMask, ClipPolygon<N>& out) {
+                  unsigned planeMask, ClipPolygon<N>& out, PipelineStatistics* stats = nullptr) {
+  static_assert(kClipPlaneCounters.size() == ClipPlanes::kClipPlaneCount);
   ClipPolygon<N> scratch;
   ClipPolygon<N>* in = &scratch;
   ClipPolygon<N>* result = &out;
@@ -99,6 +102,7 @@ void clipTriangle(const std::array<const ShadedVertex<N>*, 3>& tri, const ClipPl
   for (int p = 0; p < ClipPlanes::kClipPlaneCount; ++p) {
     if (!(planeMask & (1u << p))) continue;
     const ClipPlane& plane = planes.clip[p];
+    if (stats) ++(stats->*kClipPlaneCounters[p].first);
     result->count = 0;
     // A convex polygon gains at most one vertex per plane; only a polygon made non-convex by
     // rounding could gain more, and such a sliver is dropped rather than overflow the array.
@@ -123,6 +127,7 @@ void clipTriangle(const std::array<const ShadedVertex<N>*, 3>& tri, const ClipPl
       out.count = 0;
       return;
     }
+    if (stats) ++(stats->*kClipPlaneCounters[p].second);
   }
   if (in != &out) out = *in;
 }

@@ -11,6 +11,7 @@
 #include "pipeline/execution.h"
 #include "pipeline/framebuffer.h"
 #include "pipeline/front_end.h"
+#include "pipeline/instrumentation.h"
 #include "pipeline/state.h"
 #include "pipeline/statistics.h"
 #include "pipeline/status.h"
@@ -46,8 +47,10 @@ Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>&
   PipelineStatistics local;
   tbb::task_arena arena(exec.threads > 0 ? exec.threads : tbb::task_arena::automatic);
   arena.execute([&] {
+    StageClock clock(exec.timings);
     TransformedVertices<N> transformed;
     runVertexStage<VS, N>(call.vertexShader, call.vertices, call.indices, transformed, local);
+    clock.lap(&StageTimings::vertex);
 
     const ScreenMapping mapping = ScreenMapping::forState(state);
     const int32_t sampleReach = SamplePattern::forCount(fb.samples()).reach(state.format);
@@ -55,12 +58,16 @@ Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>&
                              state.cullMode,  state.frontFace, sampleReach};
     SetupTriangles<N> triangles;
     clipAndSetupAll(transformed, setup, ClipPlanes::forState(state, mapping), triangles, local);
+    clock.lap(&StageTimings::clipSetup);
 
     TileBins bins(fb.width(), fb.height());
     bins.build(triangles.chunks, state.format, sampleReach, &SetupTriangles<N>::id, local);
     local.binEntries += bins.entryCount();
+    if (exec.capture) exec.capture->record(bins, triangles);
+    clock.lap(&StageTimings::bin);
 
     runBackEnd(fb, state, bins, triangles, call.pixelShader, exec.coverage, local);
+    clock.lap(&StageTimings::backEnd);
   });
   stats += local;
   return Status::ok();

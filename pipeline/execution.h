@@ -14,9 +14,15 @@
 
 namespace rast {
 
+struct StageTimings;
+struct DrawCapture;
+
 struct ExecutionOptions {
   int threads = 0;  // worker threads for a draw; 0: every hardware thread
   CoverageKernel coverage = bestCoverageKernel();
+  // Optional instrumentation (pipeline/instrumentation.h), filled when not null.
+  StageTimings* timings = nullptr;
+  DrawCapture* capture = nullptr;
 };
 
 // Per-draw temporaries, from oneTBB's scalable allocator (which keeps freed blocks for reuse by

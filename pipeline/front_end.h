@@ -67,7 +67,7 @@ void clipAndSetup(const TransformedVertices<N>& in, const ScratchVector<VertexCl
       continue;
     }
     ++stats.clipClipped;
-    clipTriangle(tri, planes, crossed, polygon);
+    clipTriangle(tri, planes, crossed, polygon, &stats);
     // The clipped polygon is convex and keeps the winding: a fan from its first vertex.
     for (int k = 1; k + 1 < polygon.count; ++k) {
       ++stats.clipOutputTriangles;

@@ -19,6 +19,15 @@ struct PipelineStatistics {
   uint64_t clipClipped = 0;          // crossed the near, far or guard-band planes
   uint64_t clipOutputTriangles = 0;  // triangles leaving the clipper (the unclipped ones too)
   uint64_t clipDegenerate = 0;       // clipped to a sliver that no longer projects (w -> 0)
+  // Per clip plane, in the order they are applied (ClipPlanes::clip): polygons cut against it
+  // (a vertex of the triangle lies beyond it) and polygons left after the cut.
+  uint64_t clipWIn = 0, clipWOut = 0;
+  uint64_t clipNearIn = 0, clipNearOut = 0;
+  uint64_t clipFarIn = 0, clipFarOut = 0;
+  uint64_t clipGuardLeftIn = 0, clipGuardLeftOut = 0;
+  uint64_t clipGuardRightIn = 0, clipGuardRightOut = 0;
+  uint64_t clipGuardTopIn = 0, clipGuardTopOut = 0;
+  uint64_t clipGuardBottomIn = 0, clipGuardBottomOut = 0;
   // setup
   uint64_t setupCulledBack = 0;
   uint64_t setupCulledFront = 0;
@@ -50,7 +59,7 @@ struct PipelineStatistics {
 };
 
 // Every counter with its name: the one list that JSON, tables and summation all use.
-inline constexpr std::array<std::pair<const char*, uint64_t PipelineStatistics::*>, 25>
+inline constexpr std::array<std::pair<const char*, uint64_t PipelineStatistics::*>, 39>
     kPipelineCounters = {{
     {"vertex.input_indices", &PipelineStatistics::inputIndices},
     {"vertex.shader_invocations", &PipelineStatistics::vertexShaderInvocations},
@@ -60,6 +69,20 @@ inline constexpr std::array<std::pair<const char*, uint64_t PipelineStatistics::
     {"clip.clipped", &PipelineStatistics::clipClipped},
     {"clip.output_triangles", &PipelineStatistics::clipOutputTriangles},
     {"clip.degenerate", &PipelineStatistics::clipDegenerate},
+    {"clip.w_in", &PipelineStatistics::clipWIn},
+    {"clip.w_out", &PipelineStatistics::clipWOut},
+    {"clip.near_in", &PipelineStatistics::clipNearIn},
+    {"clip.near_out", &PipelineStatistics::clipNearOut},
+    {"clip.far_in", &PipelineStatistics::clipFarIn},
+    {"clip.far_out", &PipelineStatistics::clipFarOut},
+    {"clip.guard_left_in", &PipelineStatistics::clipGuardLeftIn},
+    {"clip.guard_left_out", &PipelineStatistics::clipGuardLeftOut},
+    {"clip.guard_right_in", &PipelineStatistics::clipGuardRightIn},
+    {"clip.guard_right_out", &PipelineStatistics::clipGuardRightOut},
+    {"clip.guard_top_in", &PipelineStatistics::clipGuardTopIn},
+    {"clip.guard_top_out", &PipelineStatistics::clipGuardTopOut},
+    {"clip.guard_bottom_in", &PipelineStatistics::clipGuardBottomIn},
+    {"clip.guard_bottom_out", &PipelineStatistics::clipGuardBottomOut},
     {"setup.culled_back", &PipelineStatistics::setupCulledBack},
     {"setup.culled_front", &PipelineStatistics::setupCulledFront},
     {"setup.zero_area", &PipelineStatistics::setupZeroArea},
@@ -77,6 +100,18 @@ inline constexpr std::array<std::pair<const char*, uint64_t PipelineStatistics::
     {"pixel.discarded", &PipelineStatistics::fragmentsDiscarded},
     {"merge.fragments_written", &PipelineStatistics::fragmentsWritten},
     {"merge.samples_blended", &PipelineStatistics::samplesBlended},
+}};
+
+// The per-plane counters of the clipper, indexed like ClipPlanes::clip: {in, out}.
+inline constexpr std::array<std::pair<uint64_t PipelineStatistics::*, uint64_t PipelineStatistics::*>, 7>
+    kClipPlaneCounters = {{
+    {&PipelineStatistics::clipWIn, &PipelineStatistics::clipWOut},
+    {&PipelineStatistics::clipNearIn, &PipelineStatistics::clipNearOut},
+    {&PipelineStatistics::clipFarIn, &PipelineStatistics::clipFarOut},
+    {&PipelineStatistics::clipGuardLeftIn, &PipelineStatistics::clipGuardLeftOut},
+    {&PipelineStatistics::clipGuardRightIn, &PipelineStatistics::clipGuardRightOut},
+    {&PipelineStatistics::clipGuardTopIn, &PipelineStatistics::clipGuardTopOut},
+    {&PipelineStatistics::clipGuardBottomIn, &PipelineStatistics::clipGuardBottomOut},
 }};
 
 template <class F>

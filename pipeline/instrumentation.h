@@ -1,0 +1,89 @@
+// Optional outputs of a draw for people studying it: wall time per stage, and a capture of what
+// binning produced. Kept out of PipelineStatistics, which is exact and thread-count independent;
+// timings are neither. A draw fills these only when ExecutionOptions points to them.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "pipeline/bin.h"
+#include "pipeline/setup.h"
+#include "rasterizer/edge_function.h"
+#include "rasterizer/pixel_rect.h"
+
+namespace rast {
+
+// Seconds spent in each stage of the draws it was given to, summed.
+struct StageTimings {
+  double vertex = 0;
+  double clipSetup = 0;
+  double bin = 0;
+  double backEnd = 0;  // raster, depth, interpolation, pixel shader and merge, per tile
+
+  double total() const { return vertex + clipSetup + bin + backEnd; }
+  StageTimings& operator+=(const StageTimings& o) {
+    vertex += o.vertex;
+    clipSetup += o.clipSetup;
+    bin += o.bin;
+    backEnd += o.backEnd;
+    return *this;
+  }
+};
+
+// Every stage with its name: the one list that tables and JSON use.
+inline constexpr std::array<std::pair<const char*, double StageTimings::*>, 4> kStageTimings = {{
+    {"vertex", &StageTimings::vertex},
+    {"clip_setup", &StageTimings::clipSetup},
+    {"bin", &StageTimings::bin},
+    {"back_end", &StageTimings::backEnd},
+}};
+
+// Adds the time since the previous lap to a stage; reads no clock when there is nowhere to add it.
+class StageClock {
+ public:
+  explicit StageClock(StageTimings* timings) : timings_(timings) {
+    if (timings_) last_ = std::chrono::steady_clock::now();
+  }
+  void lap(double StageTimings::*stage) {
+    if (!timings_) return;
+    const auto now = std::chrono::steady_clock::now();
+    timings_->*stage += std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+  }
+
+ private:
+  StageTimings* timings_;
+  std::chrono::steady_clock::time_point last_;
+};
+
+// A set-up triangle as the coverage stage sees it.
+struct CapturedTriangle {
+  std::array<EdgeFunction, 3> edges;
+  PixelRect bounds;
+  uint32_t primitiveId = 0;
+};
+
+// What binning produced, added up over the draws it is given to (all on one framebuffer size).
+struct DrawCapture {
+  int tilesX = 0, tilesY = 0;
+  std::vector<uint32_t> binEntries;  // per tile (row-major): (triangle, tile) pairs
+  // The tile whose triangles are kept (-1: none), and those triangles, in the order it ran them.
+  int zoomTileX = -1, zoomTileY = -1;
+  std::vector<CapturedTriangle> zoomTriangles;
+
+  template <int N>
+  void record(const TileBins& bins, const ScratchVector<SetupTriangle<N>>& triangles) {
+    tilesX = bins.tilesX();
+    tilesY = bins.tilesY();
+    binEntries.resize(size_t(bins.tileCount()), 0);
+    for (int t = 0; t < bins.tileCount(); ++t) binEntries[size_t(t)] += uint32_t(bins.bin(t).size());
+    if (zoomTileX < 0 || zoomTileX >= tilesX || zoomTileY < 0 || zoomTileY >= tilesY) return;
+    for (const uint32_t i : bins.bin(zoomTileY * tilesX + zoomTileX))
+      zoomTriangles.push_back({triangles[i].edges, triangles[i].bounds, triangles[i].primitiveId});
+  }
+};
+
+}  // namespace rast
