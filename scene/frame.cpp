@@ -1,8 +1,7 @@
 #include "scene/frame.h"
 
-#include <stdexcept>
-
 #include <memory>
+#include <stdexcept>
 
 #include "pipeline/draw.h"
 #include "shaders_cpp/constant_color.h"
