@@ -51,7 +51,7 @@ Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>&
 
     const ScreenMapping mapping = ScreenMapping::forState(state);
     const SetupContext setup{mapping, state.format, drawableRect(fb, state), state.cullMode,
-                             state.frontFace};
+                             state.frontFace, state.fillRule};
     ScratchVector<SetupTriangle<N>> triangles;
     clipAndSetupAll(transformed, setup, ClipPlanes::forState(state, mapping), triangles, local);
 

@@ -34,6 +34,7 @@ struct SetupContext {
   PixelRect clipRect;  // viewport, scissor and framebuffer, intersected
   CullMode cullMode;
   FrontFace frontFace;
+  FillRule fillRule = FillRule::TopLeft;
 };
 
 // Sets up one triangle whose vertices lie inside the guard band (the clipper made sure). Returns
@@ -56,7 +57,7 @@ bool setupTriangle(const std::array<const V*, 3>& v, const SetupContext& ctx,
     snapped[i] = {snapToSubpixels(w[i].x, ctx.format), snapToSubpixels(w[i].y, ctx.format)};
 
   CoverageSetup coverage;
-  const SetupOutcome outcome = setupCoverage(snapped, ctx.clipRect, ctx.format, coverage);
+  const SetupOutcome outcome = setupCoverage(snapped, ctx.clipRect, ctx.format, coverage, ctx.fillRule);
   if (outcome == SetupOutcome::ZeroArea) {
     ++stats.setupZeroArea;
     return false;

@@ -4,6 +4,7 @@
 
 #include <optional>
 
+#include "rasterizer/edge_function.h"
 #include "rasterizer/fixed_point.h"
 #include "rasterizer/pixel_rect.h"
 
@@ -45,6 +46,7 @@ struct PipelineState {
   FixedPointFormat format = FixedPointFormat::d24_4();
   CullMode cullMode = CullMode::None;
   FrontFace frontFace = FrontFace::CounterClockwise;
+  FillRule fillRule = FillRule::TopLeft;  // BottomLeft: llvmpipe's, as its image is shown
   DepthState depth;
   bool colorWrite = true;
 };

@@ -27,6 +27,7 @@ struct CoverageSetup {
 // `v` are the snapped vertices in submission order. When they run counter-clockwise on screen, the
 // edges are built for the order (v0, v2, v1) so that the interior is positive; `reordered` says so.
 SetupOutcome setupCoverage(const std::array<SnappedPoint, 3>& v, const PixelRect& clip,
-                           FixedPointFormat format, CoverageSetup& out);
+                           FixedPointFormat format, CoverageSetup& out,
+                           FillRule rule = FillRule::TopLeft);
 
 }  // namespace rast

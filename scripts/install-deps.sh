@@ -11,6 +11,8 @@ packages=(
   # The llvmpipe peer benchmarks (bench/llvmpipe_peer.h): glvnd's EGL and OpenGL headers and
   # libraries, Mesa's EGL vendor library and its DRI drivers (swrast_dri.so holds llvmpipe).
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+  # The fuzzers (fuzz/run.sh): clang with libFuzzer and the sanitizer runtimes.
+  clang libclang-rt-14-dev
 )
 
 missing=()
