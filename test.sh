@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the project (installing missing Debian packages) and runs every test twice: in the
-# Release build, then in a build with AddressSanitizer and UndefinedBehaviorSanitizer.
+# Release build, then in a build with AddressSanitizer and UndefinedBehaviorSanitizer; then runs
+# each fuzzer briefly (fuzz/run.sh, clang, its own build-fuzz/ folder).
 set -euo pipefail
 cd "$(dirname "$0")"
 scripts/install-deps.sh
@@ -15,3 +16,6 @@ cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-O
       -DRASTER_SANITIZE=ON -DRASTER_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build build-sanitize -j"$jobs"
 ctest --test-dir build-sanitize --output-on-failure -j"$jobs"
+
+# 20 seconds per fuzzer; fuzz/run.sh 600 fuzzes longer by hand.
+fuzz/run.sh 20

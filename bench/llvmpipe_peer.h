@@ -1,6 +1,6 @@
-// The peer: Mesa's llvmpipe software rasterizer, driven through a headless EGL context (the
-// surfaceless platform) and desktop OpenGL 4.5 core, rendering the workloads of workloads.h into
-// an offscreen framebuffer of RGBA8 colour and 24-bit depth.
+// The peer: Mesa's llvmpipe software rasterizer, driven through a headless EGL context
+// (peer/llvmpipe_context.h), rendering the workloads of workloads.h into an offscreen framebuffer
+// of RGBA8 colour and 24-bit depth.
 #pragma once
 
 #include <cstdint>
@@ -11,6 +11,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "peer/llvmpipe_context.h"
 #include "scene/mesh.h"
 
 namespace rast::peer {
@@ -24,14 +25,9 @@ struct FragmentCounts {
 
 class LlvmpipePeer {
  public:
-  // Creates a context with `threads` llvmpipe rasterizer threads and a width x height
-  // framebuffer. llvmpipe reads LP_NUM_THREADS when its screen is created, at eglInitialize of a
-  // terminated (or new) display, and starts that many threads with the first context; a new
-  // context on a live display keeps the old count (measured on Mesa 22.3.6). So this sets it
-  // first, and afterwards counts the process's llvmpipe threads to make sure it took. Only one
-  // peer may exist at a time (the EGL display is shared by the process). Returns
-  // null with `error` set if there is no EGL, no surfaceless platform, no GL 4.5 core context,
-  // a renderer other than llvmpipe, or the wrong number of threads.
+  // Creates a context with `threads` llvmpipe rasterizer threads (LlvmpipeContext::create: only
+  // one may exist at a time) and a width x height framebuffer. Returns null with `error` set if
+  // either cannot be made.
   static std::unique_ptr<LlvmpipePeer> create(int threads, int width, int height,
                                               std::string& error);
   ~LlvmpipePeer();
@@ -61,8 +57,5 @@ class LlvmpipePeer {
   explicit LlvmpipePeer(std::unique_ptr<Context> context);
   std::unique_ptr<Context> context_;
 };
-
-// Threads of this process whose name starts with "llvmpipe-": llvmpipe's rasterizer threads.
-int countLlvmpipeThreads();
 
 }  // namespace rast::peer

@@ -54,8 +54,8 @@ Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>&
 
     const ScreenMapping mapping = ScreenMapping::forState(state);
     const int32_t sampleReach = SamplePattern::forCount(fb.samples()).reach(state.format);
-    const SetupContext setup{mapping,         state.format,    drawableRect(fb, state),
-                             state.cullMode,  state.frontFace, sampleReach};
+    const SetupContext setup{mapping,        state.format,    drawableRect(fb, state),
+                             state.cullMode, state.frontFace, state.fillRule, sampleReach};
     SetupTriangles<N> triangles;
     clipAndSetupAll(transformed, setup, ClipPlanes::forState(state, mapping), triangles, local);
     clock.lap(&StageTimings::clipSetup);

@@ -34,6 +34,7 @@ struct SetupContext {
   PixelRect clipRect;  // viewport, scissor and framebuffer, intersected
   CullMode cullMode;
   FrontFace frontFace;
+  FillRule fillRule = FillRule::TopLeft;
   int32_t sampleReach = 0;  // subpixels from a pixel centre to its farthest MSAA sample
 };
 
@@ -57,7 +58,8 @@ bool setupTriangle(const std::array<const V*, 3>& v, const SetupContext& ctx,
     snapped[i] = {snapToSubpixels(w[i].x, ctx.format), snapToSubpixels(w[i].y, ctx.format)};
 
   CoverageSetup coverage;
-  const SetupOutcome outcome = setupCoverage(snapped, ctx.clipRect, ctx.format, coverage, ctx.sampleReach);
+  const SetupOutcome outcome =
+      setupCoverage(snapped, ctx.clipRect, ctx.format, coverage, ctx.fillRule, ctx.sampleReach);
   if (outcome == SetupOutcome::ZeroArea) {
     ++stats.setupZeroArea;
     return false;

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "pipeline/blend.h"
+#include "rasterizer/edge_function.h"
 #include "rasterizer/fixed_point.h"
 #include "rasterizer/pixel_rect.h"
 
@@ -46,6 +47,7 @@ struct PipelineState {
   FixedPointFormat format = FixedPointFormat::d24_4();
   CullMode cullMode = CullMode::None;
   FrontFace frontFace = FrontFace::CounterClockwise;
+  FillRule fillRule = FillRule::TopLeft;  // BottomLeft: llvmpipe's, as its image is shown
   DepthState depth;
   bool colorWrite = true;               // false: no colour access at all (a depth-only pass)
   uint8_t colorWriteMask = kWriteAll;   // channels written when colorWrite is on

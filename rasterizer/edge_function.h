@@ -16,6 +16,12 @@ struct SnappedPoint {
   friend constexpr bool operator==(SnappedPoint, SnappedPoint) = default;
 };
 
+// Which edges own the samples exactly on them. TopLeft is Direct3D's rule in our window
+// coordinates (y down). BottomLeft is the same rule mirrored vertically: what Mesa llvmpipe does
+// when its bottom-up GL framebuffer is shown with row 0 at the top (README, "Conformance with
+// llvmpipe"): left edges and the horizontal edges with the interior above them.
+enum class FillRule { TopLeft, BottomLeft };
+
 struct EdgeFunction {
   int64_t a = 0;  // dE/dx per subpixel
   int64_t b = 0;  // dE/dy per subpixel
@@ -30,12 +36,17 @@ struct EdgeFunction {
   // sample on the shared edge is covered once. Non-top-left edges are biased by -1, turning the
   // strict test E > 0 into E >= 0 on integers.
   static bool isTopLeft(int64_t a, int64_t b) { return a > 0 || (a == 0 && b > 0); }
+  // BottomLeft: left edges, and horizontal edges with the interior above (E falls with y: b < 0).
+  static bool ownsTies(int64_t a, int64_t b, FillRule rule) {
+    return rule == FillRule::TopLeft ? isTopLeft(a, b) : a > 0 || (a == 0 && b < 0);
+  }
 
-  static EdgeFunction through(SnappedPoint from, SnappedPoint to) {
+  static EdgeFunction through(SnappedPoint from, SnappedPoint to,
+                              FillRule rule = FillRule::TopLeft) {
     EdgeFunction e;
     e.a = int64_t(from.y) - to.y;
     e.b = int64_t(to.x) - from.x;
-    e.c = -(e.a * from.x + e.b * from.y) - (isTopLeft(e.a, e.b) ? 0 : 1);
+    e.c = -(e.a * from.x + e.b * from.y) - (ownsTies(e.a, e.b, rule) ? 0 : 1);
     return e;
   }
 };

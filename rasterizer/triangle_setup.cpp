@@ -20,7 +20,8 @@ int lastPixelAtOrBefore(int64_t hi, FixedPointFormat f) {
 }  // namespace
 
 SetupOutcome setupCoverage(const std::array<SnappedPoint, 3>& v, const PixelRect& clip,
-                           FixedPointFormat format, CoverageSetup& out, int32_t sampleReach) {
+                           FixedPointFormat format, CoverageSetup& out, FillRule rule,
+                           int32_t sampleReach) {
   // Twice the signed area with y down: positive for a clockwise triangle on screen.
   const int64_t area = (int64_t(v[1].x) - v[0].x) * (int64_t(v[2].y) - v[0].y) -
                        (int64_t(v[2].x) - v[0].x) * (int64_t(v[1].y) - v[0].y);
@@ -31,8 +32,8 @@ SetupOutcome setupCoverage(const std::array<SnappedPoint, 3>& v, const PixelRect
   const SnappedPoint p0 = v[0];
   const SnappedPoint p1 = area > 0 ? v[1] : v[2];
   const SnappedPoint p2 = area > 0 ? v[2] : v[1];
-  out.edges = {EdgeFunction::through(p0, p1), EdgeFunction::through(p1, p2),
-               EdgeFunction::through(p2, p0)};
+  out.edges = {EdgeFunction::through(p0, p1, rule), EdgeFunction::through(p1, p2, rule),
+               EdgeFunction::through(p2, p0, rule)};
 
   const int64_t minX = std::min({v[0].x, v[1].x, v[2].x}) - sampleReach;
   const int64_t maxX = std::max({v[0].x, v[1].x, v[2].x}) + sampleReach;

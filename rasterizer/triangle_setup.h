@@ -29,6 +29,7 @@ struct CoverageSetup {
 // `sampleReach`: how far (subpixels, per axis) a pixel's samples lie from its centre (MSAA), so
 // the bounds take in every pixel with a sample inside the vertices' bounding box.
 SetupOutcome setupCoverage(const std::array<SnappedPoint, 3>& v, const PixelRect& clip,
-                           FixedPointFormat format, CoverageSetup& out, int32_t sampleReach = 0);
+                           FixedPointFormat format, CoverageSetup& out,
+                           FillRule rule = FillRule::TopLeft, int32_t sampleReach = 0);
 
 }  // namespace rast

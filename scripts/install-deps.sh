@@ -13,6 +13,8 @@ packages=(
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   # The HTML report test opens the report in headless Chromium (tests/report_test.cpp).
   chromium
+  # The fuzzers (fuzz/run.sh): clang with libFuzzer and the sanitizer runtimes.
+  clang libclang-rt-14-dev
 )
 
 missing=()

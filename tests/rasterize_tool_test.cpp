@@ -280,8 +280,8 @@ TEST_F(RasterizeTool, UnknownOption) {
 }
 
 TEST_F(RasterizeTool, BadOptionValues) {
-  expectOneLineError({"--subpixel-bits", "5", "-o", path("out.png").string()},
-                     {"--subpixel-bits", "5"});
+  expectOneLineError({"--subpixel-bits", "9", "-o", path("out.png").string()},
+                     {"--subpixel-bits", "9"});
   expectOneLineError({"--width", "0", "-o", path("out.png").string()}, {"--width", "0"});
 }
 

@@ -62,8 +62,9 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
       ->check(CLI::Range(1, 16384));
   app.add_option("--height", o.height, "Image height in pixels (overrides a scene file's)")
       ->check(CLI::Range(1, 16384));
-  app.add_option("--subpixel-bits", o.subpixelBits, "4 (24.4 fixed point) or 8 (16.8)")
-      ->check(CLI::IsMember({4, 8}));
+  app.add_option("--subpixel-bits", o.subpixelBits,
+                 "Fraction bits F, 1..8: (28-F).F fixed point (4: 24.4), except 8: 16.8")
+      ->check(CLI::Range(1, 8));
   app.add_option("--cull", o.cull, "Face culling")->check(CLI::IsMember({"none", "back", "front"}));
   app.add_option("--front-face", o.frontFace, "Front-face winding as seen on the image")
       ->check(CLI::IsMember({"ccw", "cw"}));
