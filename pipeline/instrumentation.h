@@ -74,8 +74,9 @@ struct DrawCapture {
   int zoomTileX = -1, zoomTileY = -1;
   std::vector<CapturedTriangle> zoomTriangles;
 
-  template <int N>
-  void record(const TileBins& bins, const ScratchVector<SetupTriangle<N>>& triangles) {
+  // `triangles[id]`: the set-up triangle a bin entry names (SetupTriangles in front_end.h).
+  template <class Triangles>
+  void record(const TileBins& bins, const Triangles& triangles) {
     tilesX = bins.tilesX();
     tilesY = bins.tilesY();
     binEntries.resize(size_t(bins.tileCount()), 0);
