@@ -16,8 +16,9 @@ std::string bunnyPath() { return std::string(RASTER_SHARED_MESHES) + "/bunny.obj
 // Renders frames of `geometry` with `renderFrame` (a renderW*Frame) and reports the last frame's
 // counters.
 template <class Geometry, class RenderFrame>
-void runFrames(benchmark::State& state, const Geometry& geometry, RenderFrame renderFrame) {
-  Framebuffer fb(kFrameWidth, kFrameHeight);
+void runFrames(benchmark::State& state, const Geometry& geometry, RenderFrame renderFrame,
+               int samples = 1) {
+  Framebuffer fb(kFrameWidth, kFrameHeight, false, samples);
   PipelineStatistics frame;
   ExecutionOptions exec;
   exec.threads = int(state.range(1));
@@ -70,6 +71,30 @@ void BM_FrameW3(benchmark::State& state) {
 
 void BM_FrameW4(benchmark::State& state) { litMeshFrames(state, renderW4Frame); }
 
+// Feature costs, each against its plain workload in the same run: W1 at 1, 4 and 8 samples per
+// pixel (the first argument), and W3 back to front with alpha blending instead of overwriting.
+void BM_FrameW1Msaa(benchmark::State& state) {
+  LitMeshScene scene;
+  if (Status s = loadLitMeshScene(bunnyPath(), kFrameWidth, kFrameHeight, scene); !s) {
+    state.SkipWithError(s.message().c_str());
+    return;
+  }
+  runFrames(state, scene, renderW1Frame, int(state.range(0)));
+}
+
+Status renderW3BlendedFrame(Framebuffer& fb, const WindowGeometry& layers,
+                            PipelineStatistics& stats, const ExecutionOptions& exec) {
+  PipelineState state = workloadState(fb.width(), fb.height(), PositionSpace::Window);
+  state.blend = BlendState::alphaBlend();
+  fb.clear(kClearColor, kClearDepth);
+  return drawFlatGeometry(fb, state, layers, stats, exec);
+}
+
+void BM_FrameW3BackToFrontBlended(benchmark::State& state) {
+  runFrames(state, overdrawLayers(kFrameWidth, kFrameHeight, LayerOrder::BackToFront, LayerShape::Quad),
+            renderW3BlendedFrame);
+}
+
 // One write of W3's framebuffer bytes (RGBA8 colour and 32-bit depth): what any renderer that
 // writes every pixel once must at least spend.
 void BM_FrameMemsetFloor(benchmark::State& state) {
@@ -109,6 +134,14 @@ FRAME_BENCHMARK(BM_FrameW3<LayerOrder::FrontToBack, LayerShape::Tessellated>)
 FRAME_BENCHMARK(BM_FrameW3<LayerOrder::BackToFront, LayerShape::Tessellated>)
     ->Name("BM_FrameW3TessBackToFront");
 FRAME_BENCHMARK(BM_FrameW4);
+BENCHMARK(BM_FrameW1Msaa)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->ArgNames({"samples", "threads"})
+    ->Apply([](benchmark::internal::Benchmark* b) {
+      for (int samples : {1, 4, 8}) b->Args({samples, 1});
+    });
+FRAME_BENCHMARK(BM_FrameW3BackToFrontBlended);
 BENCHMARK(BM_FrameMemsetFloor)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
