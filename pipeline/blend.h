@@ -45,10 +45,17 @@ struct BlendState {
   BlendFactor dstAlpha = BlendFactor::Zero;
   glm::vec4 constant{0.0f};
 
+  friend bool operator==(const BlendState&, const BlendState&) = default;
+
   // Classic "over" with straight alpha: src * a + dst * (1 - a); alpha likewise.
   static BlendState alphaBlend() {
     return {true,          BlendOp::Add, BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha,
             BlendOp::Add, BlendFactor::One, BlendFactor::OneMinusSrcAlpha, glm::vec4(0.0f)};
+  }
+  // Additive light: src + dst, alpha likewise.
+  static BlendState additive() {
+    return {true,          BlendOp::Add, BlendFactor::One, BlendFactor::One,
+            BlendOp::Add, BlendFactor::One, BlendFactor::One, glm::vec4(0.0f)};
   }
 };
 

@@ -35,8 +35,18 @@ const Names<CompareOp> kCompareOps = {
     {"equal", CompareOp::Equal},     {"less-equal", CompareOp::LessEqual},
     {"greater", CompareOp::Greater}, {"not-equal", CompareOp::NotEqual},
     {"greater-equal", CompareOp::GreaterEqual}, {"always", CompareOp::Always}};
-const Names<FixedPointFormat> kPrecisions = {{"24.4", FixedPointFormat::d24_4()},
-                                             {"16.8", FixedPointFormat::d16_8()}};
+const Names<FixedPointFormat> kPrecisions = {
+    {"27.1", FixedPointFormat::withFractionBits(1)}, {"26.2", FixedPointFormat::withFractionBits(2)},
+    {"25.3", FixedPointFormat::withFractionBits(3)}, {"24.4", FixedPointFormat::d24_4()},
+    {"23.5", FixedPointFormat::withFractionBits(5)}, {"22.6", FixedPointFormat::withFractionBits(6)},
+    {"21.7", FixedPointFormat::withFractionBits(7)}, {"16.8", FixedPointFormat::d16_8()}};
+const Names<BlendState> kBlendModes = {{"none", BlendState{}},
+                                       {"alpha", BlendState::alphaBlend()},
+                                       {"additive", BlendState::additive()}};
+const Names<uint8_t> kWriteMasks = {{"rgba", uint8_t(kWriteAll)},
+                                    {"rgb", uint8_t(kWriteRed | kWriteGreen | kWriteBlue)},
+                                    {"alpha", uint8_t(kWriteAlpha)},
+                                    {"none", uint8_t(kWriteNone)}};
 const Names<ShadingMode> kShadingModes = {
     {"lambert", ShadingMode::Lambert}, {"normals", ShadingMode::Normals},
     {"depth", ShadingMode::Depth},     {"triangle-id", ShadingMode::TriangleId},
@@ -233,6 +243,9 @@ const std::vector<StateField>& stateFields() {
       boolField("early_depth", [](auto& s) -> auto& { return s.depth.early; }),
       boolField("color_write", [](auto& s) -> auto& { return s.colorWrite; }),
       choiceField("precision", [](auto& s) -> auto& { return s.format; }, kPrecisions),
+      choiceField("blend", [](auto& s) -> auto& { return s.blend; }, kBlendModes),
+      choiceField("color_write_mask", [](auto& s) -> auto& { return s.colorWriteMask; },
+                  kWriteMasks),
   };
   return fields;
 }
@@ -465,13 +478,17 @@ Json writeAnimation(const CameraAnimation& a) {
 // ---- The whole file.
 
 SceneDescription readScene(const Node& root, const std::string& directory) {
-  root.expectObject({"description", "width", "height", "background", "clear_depth", "camera",
-                     "lights", "meshes", "draws", "animation"});
+  root.expectObject({"description", "width", "height", "samples", "background", "clear_depth",
+                     "camera", "lights", "meshes", "draws", "animation"});
   SceneDescription s;
   s.directory = directory;
   if (auto v = root.find("description")) s.description = v->string();
   if (auto v = root.find("width")) s.width = v->integer(1, 16384);
   if (auto v = root.find("height")) s.height = v->integer(1, 16384);
+  if (auto v = root.find("samples")) {
+    s.samples = v->integer(1, 8);
+    if (!SamplePattern::supported(s.samples)) v->expected("1, 4 or 8 samples per pixel");
+  }
   if (auto v = root.find("background")) s.background = v->color();
   if (auto v = root.find("clear_depth")) s.clearDepth = v->number();
   if (auto v = root.find("camera")) s.camera = readCamera(*v);
@@ -588,6 +605,7 @@ std::string sceneToJson(const SceneDescription& s) {
   if (!s.description.empty()) j["description"] = s.description;
   j["width"] = s.width;
   j["height"] = s.height;
+  j["samples"] = s.samples;
   j["background"] = array(s.background);
   if (s.clearDepth) j["clear_depth"] = number(*s.clearDepth);
   j["camera"] = writeCamera(s.camera);

@@ -80,6 +80,7 @@ struct DrawSpec {
 struct SceneDescription {
   std::string description;
   int width = 960, height = 540;
+  int samples = 1;  // per pixel: 1, or 4 or 8 for MSAA (the framebuffer's)
   glm::vec4 background{0.0f, 0.0f, 0.0f, 1.0f};
   std::optional<float> clearDepth;  // unset: 1, or 0 when the first draw compares greater
   Camera camera;

@@ -69,6 +69,7 @@ TEST(SceneFile, EveryFieldRoundTrips) {
   s.description = "all fields";
   s.width = 33;
   s.height = 17;
+  s.samples = 4;
   s.background = {0.1f, 0.2f, 0.3f, 0.4f};
   s.clearDepth = 0.25f;
   s.camera.eye = {1.5f, -2.25f, 3.1f};
@@ -101,6 +102,8 @@ TEST(SceneFile, EveryFieldRoundTrips) {
   d.state.depth.early = false;
   d.state.colorWrite = false;
   d.state.format = FixedPointFormat::d16_8();
+  d.state.blend = BlendState::alphaBlend();
+  d.state.colorWriteMask = kWriteRed | kWriteGreen | kWriteBlue;
   d.shader.kind = ShadingMode::Lambert;
   d.shader.albedo = {0.9f, 0.1f, 0.2f};
   d.shader.ambient = {0.01f, 0.02f, 0.03f};
@@ -110,6 +113,8 @@ TEST(SceneFile, EveryFieldRoundTrips) {
   e.label = "second";
   e.mesh = 0;
   e.transform.explicitMatrix = glm::mat4(2.0f);
+  e.state.format = FixedPointFormat::withFractionBits(6);
+  e.state.blend = BlendState::additive();
   e.shader.kind = ShadingMode::Depth;
   e.shader.depthNear = 0.5f;
   e.shader.depthFar = 0.75f;
@@ -132,6 +137,11 @@ TEST(SceneFile, EveryFieldRoundTrips) {
   EXPECT_EQ(back.description, s.description);
   EXPECT_EQ(back.width, 33);
   EXPECT_EQ(back.height, 17);
+  EXPECT_EQ(back.samples, 4);
+  EXPECT_TRUE(back.draws[0].state.blend == BlendState::alphaBlend());
+  EXPECT_EQ(back.draws[0].state.colorWriteMask, kWriteRed | kWriteGreen | kWriteBlue);
+  EXPECT_TRUE(back.draws[1].state.blend == BlendState::additive());
+  EXPECT_EQ(back.draws[1].state.format, FixedPointFormat::withFractionBits(6));
   EXPECT_EQ(back.background, s.background);
   EXPECT_EQ(back.clearDepth, s.clearDepth);
   EXPECT_EQ(back.camera.eye, s.camera.eye);

@@ -299,7 +299,7 @@ int run(const Options& o) {
   if (!o.outputPattern.empty() && !frameFileName(o.outputPattern, 0, firstName, error)) return fail(error);
 
   const bool counts = !o.countOutput.empty();
-  Framebuffer fb(src.scene.width, src.scene.height, counts);
+  Framebuffer fb(src.scene.width, src.scene.height, counts, src.scene.samples);
   if (src.shadowed) {
     if (frames > 1 || !o.debugImages.empty() || !o.report.empty())
       return fail("shading blinn-phong renders one image: no sequences, debug images or report");
