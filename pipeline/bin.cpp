@@ -8,7 +8,7 @@ TileBins::TileBins(int widthPixels, int heightPixels)
       offsets_(size_t(tilesX_) * size_t(tilesY_) + 1, 0) {}
 
 void TileBins::addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
-                           const PixelRect& bounds, FixedPointFormat format,
+                           const FloatEdges* floatEdges, const PixelRect& bounds, FixedPointFormat format,
                            ScratchVector<Entry>& out, PipelineStatistics& stats) const {
   const int tx0 = bounds.x0 >> kTileShift, tx1 = (bounds.x1 - 1) >> kTileShift;
   const int ty0 = bounds.y0 >> kTileShift, ty1 = (bounds.y1 - 1) >> kTileShift;
@@ -19,7 +19,9 @@ void TileBins::addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>&
   }
   for (int ty = ty0; ty <= ty1; ++ty) {
     for (int tx = tx0; tx <= tx1; ++tx) {
-      if (classifyTile(edges, bounds, tx, ty, format) == TileCoverage::Outside) {
+      const TileCoverage kind = floatEdges ? classifyTileFloat(*floatEdges, bounds, tx, ty)
+                                           : classifyTile(edges, bounds, tx, ty, format);
+      if (kind == TileCoverage::Outside) {
         ++stats.tilesTriviallyRejected;
         continue;
       }

@@ -7,8 +7,10 @@
 #include <vector>
 
 #include "pipeline/execution.h"
+#include "pipeline/state.h"
 #include "pipeline/statistics.h"
 #include "rasterizer/coverage.h"
+#include "rasterizer/float_coverage.h"
 
 namespace rast {
 
@@ -28,10 +30,11 @@ class TileBins {
     return {triangles_.data() + offsets_[tile], triangles_.data() + offsets_[tile + 1]};
   }
 
-  // Bins triangles [0, count); triangle(i) returns an object with `edges` and `bounds`.
+  // Bins triangles [0, count); triangle(i) returns an object with `edges`, `floatEdges` and
+  // `bounds`.
   template <class TriangleAt>
   void build(size_t count, FixedPointFormat format, TriangleAt&& triangle,
-             PipelineStatistics& stats) {
+             PipelineStatistics& stats, RasterMode mode = RasterMode::FixedPoint) {
     // At most 64 chunks: the counting sort keeps a count per (chunk, tile).
     const size_t chunkSize = std::max<size_t>(1024, (count + 63) / 64);
     std::vector<ScratchVector<Entry>> entries(chunkCount(count, chunkSize));
@@ -39,7 +42,8 @@ class TileBins {
     forEachChunk(count, chunkSize, [&](size_t c, size_t begin, size_t end) {
       for (size_t i = begin; i < end; ++i) {
         const auto& t = triangle(i);
-        addTriangle(uint32_t(i), t.edges, t.bounds, format, entries[c], chunkStats[c]);
+        addTriangle(uint32_t(i), t.edges, mode == RasterMode::Float ? &t.floatEdges : nullptr,
+                    t.bounds, format, entries[c], chunkStats[c]);
       }
     });
     for (const PipelineStatistics& s : chunkStats) stats += s;
@@ -51,9 +55,10 @@ class TileBins {
     uint32_t tile;
     uint32_t triangle;
   };
-  // Appends the tiles of `bounds` that the corner test does not reject.
+  // Appends the tiles of `bounds` that the corner test does not reject (of the float edges when
+  // given: float mode).
   void addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
-                   const PixelRect& bounds, FixedPointFormat format, ScratchVector<Entry>& out,
+                   const FloatEdges* floatEdges, const PixelRect& bounds, FixedPointFormat format, ScratchVector<Entry>& out,
                    PipelineStatistics& stats) const;
   void sortByTile(const std::vector<ScratchVector<Entry>>& chunks);
 

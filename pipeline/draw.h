@@ -50,14 +50,15 @@ Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>&
     runVertexStage<VS, N>(call.vertexShader, call.vertices, call.indices, transformed, local);
 
     const ScreenMapping mapping = ScreenMapping::forState(state);
-    const SetupContext setup{mapping, state.format, drawableRect(fb, state), state.cullMode,
-                             state.frontFace};
+    const SetupContext setup{mapping,         state.format,    drawableRect(fb, state),
+                             state.cullMode,  state.frontFace, state.rasterMode};
     ScratchVector<SetupTriangle<N>> triangles;
     clipAndSetupAll(transformed, setup, ClipPlanes::forState(state, mapping), triangles, local);
 
     TileBins bins(fb.width(), fb.height());
     bins.build(triangles.size(), state.format,
-               [&](size_t i) -> const SetupTriangle<N>& { return triangles[i]; }, local);
+               [&](size_t i) -> const SetupTriangle<N>& { return triangles[i]; }, local,
+               state.rasterMode);
     local.binEntries += bins.entryCount();
 
     runBackEnd(fb, state, bins, triangles, call.pixelShader, exec.coverage, local);

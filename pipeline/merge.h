@@ -22,9 +22,11 @@ constexpr bool depthPasses(float fragment, float stored) {
   else return true;
 }
 
-template <CompareOp Op, bool DepthWrite, bool ColorWrite, bool EarlyDepth>
+template <CompareOp Op, bool DepthWrite, bool ColorWrite, bool EarlyDepth,
+          DepthFormat Format = DepthFormat::Float32>
 struct MergeConfig {
   static constexpr CompareOp kCompare = Op;
+  static constexpr DepthFormat kDepthFormat = Format;
   static constexpr bool kDepthWrite = DepthWrite;
   static constexpr bool kColorWrite = ColorWrite;
   static constexpr bool kEarlyDepth = EarlyDepth;

@@ -31,6 +31,7 @@ struct TileContext {
   MergeTarget target;
   int framebufferWidth;
   int framebufferHeight;
+  RasterMode rasterMode = RasterMode::FixedPoint;
 };
 
 // Bounds of the depth values stored in a tile, so a triangle whose depth range lies entirely on
@@ -67,6 +68,13 @@ constexpr bool allPass(float triMin, float triMax, const TileDepthBounds& b) {
   else return triMin >= b.max;  // GreaterEqual
 }
 
+// A fragment's depth as the depth buffer's format stores it: the value every compare and write
+// uses. Quantising is monotonic, so the tile depth bounds above stay exact.
+template <class Merge, int N>
+float fragmentDepth(const SetupTriangle<N>& t, float dx, float dy) {
+  return quantizeDepth<Merge::kDepthFormat>(interpolateDepth(t, dx, dy));
+}
+
 // The depth test of every sample in `mask`; returns those that pass.
 template <class Merge, int N>
 CoverageMask depthTestMask(const SetupTriangle<N>& t, CoverageMask mask, int tileX, int tileY,
@@ -75,7 +83,7 @@ CoverageMask depthTestMask(const SetupTriangle<N>& t, CoverageMask mask, int til
   for (CoverageMask m = mask; m; m &= m - 1) {
     const int bit = std::countr_zero(m);
     const int px = tileX * kTileSize + bit % kTileSize, py = tileY * kTileSize + bit / kTileSize;
-    const float z = interpolateDepth(t, float(px - t.bounds.x0), float(py - t.bounds.y0));
+    const float z = fragmentDepth<Merge>(t, float(px - t.bounds.x0), float(py - t.bounds.y0));
     if (depthPasses<Merge::kCompare>(z, target.depth[size_t(py) * width + px]))
       pass |= CoverageMask{1} << bit;
   }
@@ -91,7 +99,7 @@ void shadeAndMerge(const SetupTriangle<N>& t, int px, int py, const PS& shader,
   constexpr bool kShade = Merge::kColorWrite || PS::kMayDiscard;
   constexpr bool kLateDepth = kDepthTest && !Merge::kEarlyDepth && kShade;
   const float dx = float(px - t.bounds.x0), dy = float(py - t.bounds.y0);
-  const float z = interpolateDepth(t, dx, dy);
+  const float z = fragmentDepth<Merge>(t, dx, dy);
   PixelResult result;
   if constexpr (kShade) {
     Fragment<N> fragment;
@@ -139,7 +147,9 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
   for (const uint32_t index : bin) {
     const SetupTriangle<N>& t = ctx.triangles[index];
     const TileCoverageResult coverage =
-        coverTile(ctx.kernel, t.edges, t.bounds, tileX, tileY, ctx.format);
+        ctx.rasterMode == RasterMode::Float
+            ? coverTileFloat(t.floatEdges, t.bounds, tileX, tileY)
+            : coverTile(ctx.kernel, t.edges, t.bounds, tileX, tileY, ctx.format);
     switch (coverage.kind) {
       case TileCoverage::Outside:
         ++stats.tilesTriviallyRejected;
@@ -172,10 +182,10 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
             }
         }
         const float corners[4] = {
-            interpolateDepth(t, float(x0 - t.bounds.x0), float(y0 - t.bounds.y0)),
-            interpolateDepth(t, float(x1 - 1 - t.bounds.x0), float(y0 - t.bounds.y0)),
-            interpolateDepth(t, float(x0 - t.bounds.x0), float(y1 - 1 - t.bounds.y0)),
-            interpolateDepth(t, float(x1 - 1 - t.bounds.x0), float(y1 - 1 - t.bounds.y0))};
+            fragmentDepth<Merge>(t, float(x0 - t.bounds.x0), float(y0 - t.bounds.y0)),
+            fragmentDepth<Merge>(t, float(x1 - 1 - t.bounds.x0), float(y0 - t.bounds.y0)),
+            fragmentDepth<Merge>(t, float(x0 - t.bounds.x0), float(y1 - 1 - t.bounds.y0)),
+            fragmentDepth<Merge>(t, float(x1 - 1 - t.bounds.x0), float(y1 - 1 - t.bounds.y0))};
         const float triMin = std::min({corners[0], corners[1], corners[2], corners[3]});
         const float triMax = std::max({corners[0], corners[1], corners[2], corners[3]});
         if (allFail<kOp>(triMin, triMax, stored)) {
@@ -221,6 +231,16 @@ void withCompareOp(CompareOp op, F&& f) {
 }
 
 template <class F>
+void withDepthFormat(DepthFormat format, F&& f) {
+  using enum DepthFormat;
+  switch (format) {
+    case Float32: return f(std::integral_constant<DepthFormat, Float32>{});
+    case Unorm24: return f(std::integral_constant<DepthFormat, Unorm24>{});
+    case Unorm16: return f(std::integral_constant<DepthFormat, Unorm16>{});
+  }
+}
+
+template <class F>
 void withFlag(bool flag, F&& f) {
   if (flag) f(std::true_type{});
   else f(std::false_type{});
@@ -242,22 +262,26 @@ void runBackEnd(Framebuffer& fb, const PipelineState& state, const TileBins& bin
                                {fb.colorPlane().data(), fb.depthPlane().data(),
                                 fb.hasCounts() ? fb.countPlane().data() : nullptr},
                                fb.width(),
-                               fb.height()};
+                               fb.height(),
+                               state.rasterMode};
   detail::withCompareOp(state.depth.compare, [&](auto op) {
     detail::withFlag(state.depth.write, [&](auto depthWrite) {
       detail::withFlag(state.colorWrite, [&](auto colorWrite) {
         detail::withFlag(state.depth.early, [&](auto early) {
-          using Merge = MergeConfig<decltype(op)::value, decltype(depthWrite)::value,
-                                    decltype(colorWrite)::value, decltype(early)::value>;
-          tbb::combinable<PipelineStatistics> perTask;
-          tbb::parallel_for(tbb::blocked_range<int>(0, bins.tileCount(), 8),
-                            [&](const tbb::blocked_range<int>& tiles) {
-            PipelineStatistics& local = perTask.local();
-            for (int tile = tiles.begin(); tile != tiles.end(); ++tile)
-              rasterizeTile<PS, Merge>(tile % bins.tilesX(), tile / bins.tilesX(),
-                                       bins.bin(tile), ctx, local);
+          detail::withDepthFormat(state.depth.format, [&](auto depthFormat) {
+            using Merge = MergeConfig<decltype(op)::value, decltype(depthWrite)::value,
+                                      decltype(colorWrite)::value, decltype(early)::value,
+                                      decltype(depthFormat)::value>;
+            tbb::combinable<PipelineStatistics> perTask;
+            tbb::parallel_for(tbb::blocked_range<int>(0, bins.tileCount(), 8),
+                              [&](const tbb::blocked_range<int>& tiles) {
+              PipelineStatistics& local = perTask.local();
+              for (int tile = tiles.begin(); tile != tiles.end(); ++tile)
+                rasterizeTile<PS, Merge>(tile % bins.tilesX(), tile / bins.tilesX(),
+                                         bins.bin(tile), ctx, local);
+            });
+            perTask.combine_each([&](const PipelineStatistics& s) { stats += s; });
           });
-          perTask.combine_each([&](const PipelineStatistics& s) { stats += s; });
         });
       });
     });
