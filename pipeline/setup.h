@@ -91,8 +91,10 @@ bool setupTriangle(const std::array<const V*, 3>& v, const SetupContext& ctx,
   // with the coverage it serves.
   std::array<double, 3> x, y, depth, invW;
   for (int i = 0; i < 3; ++i) {
-    x[i] = floatMode ? double(float(w[i].x)) : subpixelsToPixels(snapped[i].x, ctx.format);
-    y[i] = floatMode ? double(float(w[i].y)) : subpixelsToPixels(snapped[i].y, ctx.format);
+    // (Float mode widens the floats setupFloatCoverage stored, not double(float(w[i].x)) here:
+    // GCC 12 at -O2 and above drops that rounding in one lane of the vectorized loop.)
+    x[i] = floatMode ? out.floatEdges.x[i] : subpixelsToPixels(snapped[i].x, ctx.format);
+    y[i] = floatMode ? out.floatEdges.y[i] : subpixelsToPixels(snapped[i].y, ctx.format);
     depth[i] = w[i].z;
     invW[i] = w[i].invW;
   }

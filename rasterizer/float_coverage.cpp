@@ -39,12 +39,11 @@ SetupOutcome setupFloatCoverage(const std::array<double, 3>& windowX,
   if (area == 0 || areaInDouble == 0) return SetupOutcome::ZeroArea;
 
   out.clockwiseOnScreen = area > 0;
-  const int i1 = area > 0 ? 1 : 2, i2 = area > 0 ? 2 : 1;
-  edges.x = {x[0], x[i1], x[i2]};
-  edges.y = {y[0], y[i1], y[i2]};
+  edges.x = x;
+  edges.y = y;
   for (int i = 0; i < 3; ++i) {
-    const int j = (i + 1) % 3;
-    edges.edges[i] = edgeThrough(edges.x[i], edges.y[i], edges.x[j], edges.y[j]);
+    const int j = area > 0 ? (i + 1) % 3 : (i + 2) % 3;
+    edges.edges[i] = edgeThrough(x[i], y[i], x[j], y[j]);
   }
 
   // Pixel centres p + 1/2 inside [min, max]: exact in double for float bounds.

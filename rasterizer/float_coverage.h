@@ -29,8 +29,10 @@ struct FloatEdge {
 };
 
 struct FloatEdges {
-  std::array<FloatEdge, 3> edges;  // positive inside
-  std::array<float, 3> x{}, y{};   // the vertices in float window coordinates (pixels), as given
+  std::array<FloatEdge, 3> edges;  // positive inside (for a counter-clockwise triangle, edge i
+                                   // runs from vertex i to vertex i - 1)
+  std::array<float, 3> x{}, y{};   // the vertices in float window coordinates (pixels), in the
+                                   // order given
 };
 
 // Setup from window positions (pixels, y down): the float vertices, their edges, orientation and

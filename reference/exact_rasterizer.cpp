@@ -42,6 +42,15 @@ bool isTopOrLeft(Int px, Int py, Int qx, Int qy, Int rx, Int ry) {
 
 }  // namespace
 
+WindowTriangle roundedToFloat(const WindowTriangle& t) {
+  WindowTriangle out;
+  for (int i = 0; i < 3; ++i) {
+    const volatile float x = float(t[i].x), y = float(t[i].y);
+    out[i] = {x, y};
+  }
+  return out;
+}
+
 int64_t snapExactly(double v, FixedPointFormat format) {
   const double limit = format.guardBandSubpixels();
   if (v > limit) return int64_t(limit);  // beyond the band in pixels, so also in subpixels

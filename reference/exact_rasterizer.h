@@ -58,6 +58,11 @@ struct GridTriangle {
   int fractionBits = 1;
 };
 
+// The triangle with each coordinate rounded to float (what float mode and PositionSpace::Window
+// see). Through volatile storage: GCC 12 at -O2 and above drops the float rounding of the last
+// lane of a vectorized loop of `double(float(v))`.
+WindowTriangle roundedToFloat(const WindowTriangle& t);
+
 // Round to nearest, ties to even, of v * 2^F, clamped to the format's guard band.
 int64_t snapExactly(double v, FixedPointFormat format);
 

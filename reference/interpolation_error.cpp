@@ -88,12 +88,13 @@ Status measureInterpolation(const std::array<ShadedVertex<2>, 3>& triangle, Pipe
   std::array<std::array<double, 3>, 2> value;
   for (int k = 0; k < 3; ++k) {
     const WindowPosition p = mapping.toWindow(glm::dvec4(triangle[k].position));
-    // Float mode rasterizes and interpolates over the float vertices.
-    window[k] = floatMode ? WindowPoint{double(float(p.x)), double(float(p.y))} : WindowPoint{p.x, p.y};
+    window[k] = {p.x, p.y};
     depth[k] = p.z;
     invW[k] = p.invW;
     for (int j = 0; j < 2; ++j) value[j][k] = triangle[k].varyings[j];
   }
+  // Float mode rasterizes and interpolates over the float vertices.
+  if (floatMode) window = roundedToFloat(window);
   GridTriangle grid;
   if (!toGrid(window, {!floatMode, state.format, SampleRule::TopLeft}, grid))
     return Status::error("the triangle's exact geometry cannot be represented on an integer grid");

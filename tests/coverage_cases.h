@@ -76,8 +76,7 @@ inline WindowTriangle randomTriangle(std::mt19937_64& rng, FixedPointFormat form
     }
   }
   // The pipeline takes float positions: the reference gets exactly the same values.
-  for (auto& p : t) p = {double(float(p.x)), double(float(p.y))};
-  return t;
+  return reference::roundedToFloat(t);
 }
 
 // Per pixel, a sum of hashes of the triangles that wrote it: with the count, a pixel covered by

@@ -171,12 +171,13 @@ TEST(DepthFormat, ZFightingMatchesTheResolutionFormula) {
   }
   // The formula itself, at one point (n = 0.1, f = 100, d = 10): the depth slope is
   // f n / ((f - n) d^2) = 1.001e-3 per unit; unorm16's step 1/65535 plus the float spacing at
-  // z = 0.991 (2^-24) over it, 1.5318e-2 units.
-  EXPECT_NEAR(depthResolution(DepthFormat::Unorm16, {0.1, 100.0, false}, 10.0), 1.5318e-2, 1e-5);
-  // Reversed float depth is far finer than standard far from the eye; unorm does not care.
+  // z = 0.991 (2^-24), 1.53186e-5, over it: 1.5303e-2 units.
+  EXPECT_NEAR(depthResolution(DepthFormat::Unorm16, {0.1, 100.0, false}, 10.0), 1.5303e-2, 1e-6);
+  // Reversed float depth is far finer than standard far from the eye (500 times at d = 50, where
+  // the reversed depth is 1e-3 and its floats 2^-33 apart); unorm does not care.
   const PerspectiveDepth standard{0.1, 100.0, false}, reversedDepth{0.1, 100.0, true};
   EXPECT_LT(depthResolution(DepthFormat::Float32, reversedDepth, 50.0),
-            depthResolution(DepthFormat::Float32, standard, 50.0) / 1000);
+            depthResolution(DepthFormat::Float32, standard, 50.0) / 100);
   EXPECT_NEAR(depthResolution(DepthFormat::Unorm16, reversedDepth, 50.0),
               depthResolution(DepthFormat::Unorm16, standard, 50.0),
               depthResolution(DepthFormat::Unorm16, standard, 50.0) * 0.01);

@@ -206,9 +206,8 @@ std::vector<uint32_t> pipelineCounts(const CoverageCase& c, const Mode& mode) {
 // The exact geometry is that of the float-rounded window positions (what float mode takes; within
 // 2^-16 pixel of the double ones at this size), always exactly representable on a grid.
 std::vector<WindowTriangle> floatRounded(const std::vector<WindowTriangle>& in) {
-  std::vector<WindowTriangle> out = in;
-  for (WindowTriangle& t : out)
-    for (WindowPoint& p : t) p = {double(float(p.x)), double(float(p.y))};
+  std::vector<WindowTriangle> out;
+  for (const WindowTriangle& t : in) out.push_back(reference::roundedToFloat(t));
   return out;
 }
 
