@@ -8,8 +8,9 @@ TileBins::TileBins(int widthPixels, int heightPixels)
       offsets_(size_t(tilesX_) * size_t(tilesY_) + 1, 0) {}
 
 void TileBins::addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
-                           const FloatEdges* floatEdges, const PixelRect& bounds, FixedPointFormat format,
-                           ScratchVector<Entry>& out, PipelineStatistics& stats) const {
+                           const FloatEdges* floatEdges, const PixelRect& bounds,
+                           FixedPointFormat format, ScratchVector<Entry>& out,
+                           PipelineStatistics& stats) const {
   const int tx0 = bounds.x0 >> kTileShift, tx1 = (bounds.x1 - 1) >> kTileShift;
   const int ty0 = bounds.y0 >> kTileShift, ty1 = (bounds.y1 - 1) >> kTileShift;
   if (tx0 == tx1 && ty0 == ty1) {

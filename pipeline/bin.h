@@ -58,8 +58,8 @@ class TileBins {
   // Appends the tiles of `bounds` that the corner test does not reject (of the float edges when
   // given: float mode).
   void addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
-                   const FloatEdges* floatEdges, const PixelRect& bounds, FixedPointFormat format, ScratchVector<Entry>& out,
-                   PipelineStatistics& stats) const;
+                   const FloatEdges* floatEdges, const PixelRect& bounds, FixedPointFormat format,
+                   ScratchVector<Entry>& out, PipelineStatistics& stats) const;
   void sortByTile(const std::vector<ScratchVector<Entry>>& chunks);
 
   int tilesX_, tilesY_;
