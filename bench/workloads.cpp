@@ -42,13 +42,8 @@ Status renderLitMeshFrame(Framebuffer& fb, const LitMeshScene& scene, bool color
                           PipelineStatistics& stats, const ExecutionOptions& exec) {
   PipelineState state = workloadState(fb.width(), fb.height(), PositionSpace::Clip);
   state.colorWrite = colorWrite;
-  const WorldNormalVertexShader vs{glm::mat4(1.0f), scene.viewProjection};
-  const W1LambertShader ps;
   fb.clear(kClearColor, kClearDepth);
-  return draw(fb, state,
-              DrawCall<WorldNormalVertexShader, W1LambertShader>{scene.mesh.vertices,
-                                                                 scene.mesh.indices, vs, ps},
-              stats, exec);
+  return drawLitMesh(fb, state, scene, stats, exec);
 }
 
 Status renderFlatFrame(Framebuffer& fb, const WindowGeometry& geometry,
@@ -118,6 +113,16 @@ WindowGeometry overdrawLayers(int width, int height, LayerOrder order, LayerShap
     else appendTriangleGrid(grid, depth, layers);
   }
   return layers;
+}
+
+Status drawLitMesh(Framebuffer& fb, const PipelineState& state, const LitMeshScene& scene,
+                   PipelineStatistics& stats, const ExecutionOptions& exec) {
+  const WorldNormalVertexShader vs{glm::mat4(1.0f), scene.viewProjection};
+  const W1LambertShader ps;
+  return draw(fb, state,
+              DrawCall<WorldNormalVertexShader, W1LambertShader>{scene.mesh.vertices,
+                                                                 scene.mesh.indices, vs, ps},
+              stats, exec);
 }
 
 Status drawFlatGeometry(Framebuffer& fb, const PipelineState& state,

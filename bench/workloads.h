@@ -104,6 +104,11 @@ Status renderW3Frame(Framebuffer& fb, const WindowGeometry& layers, PipelineStat
 Status renderW4Frame(Framebuffer& fb, const LitMeshScene& scene, PipelineStatistics& stats,
                      const ExecutionOptions& exec = {});
 
+// The draw of W1 alone (no clear) with any state (clip space), for the precision laboratory's
+// modes.
+Status drawLitMesh(Framebuffer& fb, const PipelineState& state, const LitMeshScene& scene,
+                   PipelineStatistics& stats, const ExecutionOptions& exec = {});
+
 // The draw of W2 and W3 alone (no clear) with any state, for checks with other depth compares.
 Status drawFlatGeometry(Framebuffer& fb, const PipelineState& state,
                         const WindowGeometry& geometry, PipelineStatistics& stats,

@@ -10,14 +10,24 @@ TileBins::TileBins(int widthPixels, int heightPixels)
       offsets_(size_t(tilesX_) * size_t(tilesY_) + 1, 0) {}
 
 void TileBins::addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
-                           const PixelRect& bounds, FixedPointFormat format,
-                           int32_t sampleReach, ScratchVector<Entry>& out,
-                           PipelineStatistics& stats) const {
+                           const FloatEdges* floatEdges, const PixelRect& bounds,
+                           FixedPointFormat format, int32_t sampleReach,
+                           ScratchVector<Entry>& out, PipelineStatistics& stats) const {
   const int tx0 = bounds.x0 >> kTileShift, tx1 = (bounds.x1 - 1) >> kTileShift;
   const int ty0 = bounds.y0 >> kTileShift, ty1 = (bounds.y1 - 1) >> kTileShift;
   if (tx0 == tx1 && ty0 == ty1) {
     // A one-tile triangle is not tested here: its bounds already say it touches the tile.
     out.push_back({uint32_t(ty0 * tilesX_ + tx0), triangle});
+    return;
+  }
+  if (floatEdges) {
+    for (int ty = ty0; ty <= ty1; ++ty)
+      for (int tx = tx0; tx <= tx1; ++tx) {
+        if (classifyTileFloat(*floatEdges, bounds, tx, ty) == TileCoverage::Outside)
+          ++stats.tilesTriviallyRejected;
+        else
+          out.push_back({uint32_t(ty * tilesX_ + tx), triangle});
+      }
     return;
   }
   // classifyTile's Outside test, stepped from tile to tile: per edge, its largest value over a

@@ -9,8 +9,10 @@
 #include <tbb/task_arena.h>
 
 #include "pipeline/execution.h"
+#include "pipeline/state.h"
 #include "pipeline/statistics.h"
 #include "rasterizer/coverage.h"
+#include "rasterizer/float_coverage.h"
 
 namespace rast {
 
@@ -34,7 +36,7 @@ class TileBins {
   // naming triangle i of chunk c by id(c, i). `sampleReach`: see classifyTile.
   template <class Chunks, class IdOf>
   void build(const Chunks& chunks, FixedPointFormat format, int32_t sampleReach, IdOf&& id,
-             PipelineStatistics& stats) {
+             PipelineStatistics& stats, RasterMode mode = RasterMode::FixedPoint) {
     // Groups of consecutive chunks, a few per thread: the counting sort keeps a count per
     // (group, tile), so more groups than threads only cost memory. The grouping does not change
     // the result: every bin lists its triangles in submission order.
@@ -46,8 +48,9 @@ class TileBins {
     forEachChunk(chunks.size(), groupSize, [&](size_t g, size_t begin, size_t end) {
       for (size_t c = begin; c < end; ++c)
         for (size_t i = 0; i < chunks[c].size(); ++i)
-          addTriangle(id(c, i), chunks[c][i].edges, chunks[c][i].bounds, format, sampleReach,
-                      entries[g], groupStats[g]);
+          addTriangle(id(c, i), chunks[c][i].edges,
+                      mode == RasterMode::Float ? &chunks[c][i].floatEdges : nullptr,
+                      chunks[c][i].bounds, format, sampleReach, entries[g], groupStats[g]);
     });
     for (const PipelineStatistics& s : groupStats) stats += s;
     sortByTile(entries);
@@ -58,10 +61,11 @@ class TileBins {
     uint32_t tile;
     uint32_t triangle;
   };
-  // Appends the tiles of `bounds` that the corner test does not reject.
+  // Appends the tiles of `bounds` that the corner test does not reject (of the float edges when
+  // given: float mode).
   void addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
-                   const PixelRect& bounds, FixedPointFormat format, int32_t sampleReach,
-                   ScratchVector<Entry>& out, PipelineStatistics& stats) const;
+                   const FloatEdges* floatEdges, const PixelRect& bounds, FixedPointFormat format,
+                   int32_t sampleReach, ScratchVector<Entry>& out, PipelineStatistics& stats) const;
   void sortByTile(const std::vector<ScratchVector<Entry>>& chunks);
 
   int tilesX_, tilesY_;

@@ -36,6 +36,8 @@ Status validateDraw(const Framebuffer& fb, const PipelineState& state, size_t ve
     return Status::error("MSAA sample positions lie on a 1/16-pixel grid: " +
                          std::to_string(fb.samples()) + " samples need at least 4 subpixel "
                          "bits, the format is " + f.name());
+  if (fb.samples() > 1 && state.rasterMode == RasterMode::Float)
+    return Status::error("the float raster mode covers pixel centres only: it has no MSAA");
   if (indices.size() % 3 != 0)
     return Status::error("index count " + std::to_string(indices.size()) +
                          " is not a multiple of 3");

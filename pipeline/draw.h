@@ -55,13 +55,15 @@ Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>&
     const ScreenMapping mapping = ScreenMapping::forState(state);
     const int32_t sampleReach = SamplePattern::forCount(fb.samples()).reach(state.format);
     const SetupContext setup{mapping,        state.format,    drawableRect(fb, state),
-                             state.cullMode, state.frontFace, state.fillRule, sampleReach};
+                             state.cullMode, state.frontFace, state.fillRule,
+                             sampleReach,    state.rasterMode};
     SetupTriangles<N> triangles;
     clipAndSetupAll(transformed, setup, ClipPlanes::forState(state, mapping), triangles, local);
     clock.lap(&StageTimings::clipSetup);
 
     TileBins bins(fb.width(), fb.height());
-    bins.build(triangles.chunks, state.format, sampleReach, &SetupTriangles<N>::id, local);
+    bins.build(triangles.chunks, state.format, sampleReach, &SetupTriangles<N>::id, local,
+               state.rasterMode);
     local.binEntries += bins.entryCount();
     if (exec.capture) exec.capture->record(bins, triangles);
     clock.lap(&StageTimings::bin);

@@ -10,6 +10,7 @@
 #include "pipeline/state.h"
 #include "pipeline/statistics.h"
 #include "pipeline/viewport.h"
+#include "rasterizer/float_coverage.h"
 #include "rasterizer/plane_equation.h"
 #include "rasterizer/triangle_setup.h"
 
@@ -19,6 +20,7 @@ namespace rast {
 template <int N>
 struct SetupTriangle {
   std::array<EdgeFunction, 3> edges;
+  FloatEdges floatEdges;  // RasterMode::Float only
   PixelRect bounds;  // planes are anchored at the centre of pixel (bounds.x0, bounds.y0)
   PlaneEquation depth;
   PlaneEquation invW;
@@ -36,6 +38,7 @@ struct SetupContext {
   FrontFace frontFace;
   FillRule fillRule = FillRule::TopLeft;
   int32_t sampleReach = 0;  // subpixels from a pixel centre to its farthest MSAA sample
+  RasterMode rasterMode = RasterMode::FixedPoint;
 };
 
 // Sets up one triangle whose vertices lie inside the guard band (the clipper made sure). Returns
@@ -58,8 +61,12 @@ bool setupTriangle(const std::array<const V*, 3>& v, const SetupContext& ctx,
     snapped[i] = {snapToSubpixels(w[i].x, ctx.format), snapToSubpixels(w[i].y, ctx.format)};
 
   CoverageSetup coverage;
+  const bool floatMode = ctx.rasterMode == RasterMode::Float;
   const SetupOutcome outcome =
-      setupCoverage(snapped, ctx.clipRect, ctx.format, coverage, ctx.fillRule, ctx.sampleReach);
+      floatMode ? setupFloatCoverage({w[0].x, w[1].x, w[2].x}, {w[0].y, w[1].y, w[2].y},
+                                     ctx.clipRect, coverage, out.floatEdges)
+                : setupCoverage(snapped, ctx.clipRect, ctx.format, coverage, ctx.fillRule,
+                                ctx.sampleReach);
   if (outcome == SetupOutcome::ZeroArea) {
     ++stats.setupZeroArea;
     return false;
@@ -83,11 +90,14 @@ bool setupTriangle(const std::array<const V*, 3>& v, const SetupContext& ctx,
   out.primitiveId = primitiveId;
   out.frontFacing = front;
 
-  // Planes through the snapped positions, so interpolation agrees with the coverage it serves.
+  // Planes through the snapped positions (float mode: the float ones), so interpolation agrees
+  // with the coverage it serves.
   std::array<double, 3> x, y, depth, invW;
   for (int i = 0; i < 3; ++i) {
-    x[i] = subpixelsToPixels(snapped[i].x, ctx.format);
-    y[i] = subpixelsToPixels(snapped[i].y, ctx.format);
+    // (Float mode widens the floats setupFloatCoverage stored, not double(float(w[i].x)) here:
+    // GCC 12 at -O2 and above drops that rounding in one lane of the vectorized loop.)
+    x[i] = floatMode ? out.floatEdges.x[i] : subpixelsToPixels(snapped[i].x, ctx.format);
+    y[i] = floatMode ? out.floatEdges.y[i] : subpixelsToPixels(snapped[i].y, ctx.format);
     depth[i] = w[i].z;
     invW[i] = w[i].invW;
   }

@@ -6,6 +6,7 @@
 
 #include "pipeline/blend.h"
 #include "rasterizer/edge_function.h"
+#include "pipeline/depth_format.h"
 #include "rasterizer/fixed_point.h"
 #include "rasterizer/pixel_rect.h"
 
@@ -26,6 +27,12 @@ enum class CompareOp { Never, Less, Equal, LessEqual, Greater, NotEqual, Greater
 //           as given, for coverage comparisons with other rasterizers.
 enum class PositionSpace { Clip, Window };
 
+// How coverage is computed. FixedPoint: snapped vertices, exact integer edge functions and the
+// top-left rule. Float: what a naive renderer does, float edge functions of the unsnapped
+// vertices and no fill rule (rasterizer/float_coverage.h), for precision studies; the fixed-point
+// format still bounds the guard band.
+enum class RasterMode { FixedPoint, Float };
+
 struct Viewport {
   int x = 0, y = 0, width = 0, height = 0;  // pixels, top-left origin
 };
@@ -36,6 +43,10 @@ struct DepthState {
   // Test before the pixel shader (skipping shading of hidden fragments). Off moves the test
   // after shading, to measure what early depth saves; results are identical either way.
   bool early = true;
+  // What the depth buffer stores (depth_format.h): fragments are quantised to it before the
+  // compare and the write, and the pixel shader sees the quantised depth. Clear values should be
+  // representable in it (0 and 1 are in every format).
+  DepthFormat format = DepthFormat::Float32;
 };
 // With compare Always no test runs: merge.depth_passed and merge.depth_failed count nothing (with
 // Never every covered sample fails). Always with writes off costs no depth access at all.
@@ -45,6 +56,7 @@ struct PipelineState {
   std::optional<PixelRect> scissor;
   PositionSpace positionSpace = PositionSpace::Clip;
   FixedPointFormat format = FixedPointFormat::d24_4();
+  RasterMode rasterMode = RasterMode::FixedPoint;
   CullMode cullMode = CullMode::None;
   FrontFace frontFace = FrontFace::CounterClockwise;
   FillRule fillRule = FillRule::TopLeft;  // BottomLeft: llvmpipe's, as its image is shown

@@ -140,6 +140,10 @@ struct BackEndConfig {
   bool colorMerge = false;
   BlendState blend;
   uint8_t colorWriteMask = kWriteAll;
+  RasterMode rasterMode = RasterMode::FixedPoint;
+  // Depth as the depth buffer stores it (depth_format.h); null for 32-bit float, which keeps it.
+  void (*quantizeDepthLanes)(TileLanes<float>& z, int rowBegin, int rowEnd) = nullptr;
+  float (*quantize)(float z) = nullptr;
   // Framebuffer planes (sample-major) and size.
   MergeTarget target;
   int width = 0, height = 0;
@@ -156,6 +160,12 @@ void depthLanes(const SetupTriangle<N>& t, int x0, int y0, float offsetX, float 
       const float v = t.depth.at(dx0 + float(lx), dy0 + float(ly));
       z[ly * kTileSize + lx] = v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v);
     }
+}
+
+// The depth buffer format's value of each lane (depth_format.h), rows [rowBegin, rowEnd).
+template <DepthFormat F>
+void quantizeLanes(TileLanes<float>& z, int rowBegin, int rowEnd) {
+  for (int i = rowBegin * kTileSize; i < rowEnd * kTileSize; ++i) z[i] = quantizeDepth<F>(z[i]);
 }
 
 // Shaders that declare `static constexpr bool kDerivatives = true` run on 2x2 quads.
@@ -320,8 +330,10 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
     uint64_t covered = 0;
     for (int s = 0; s < S; ++s) {
       const TileCoverageResult c =
-          coverTile(cfg.kernel, t.edges, t.bounds, tileX, tileY, cfg.format,
-                    cfg.samples.offsetX(s, cfg.format), cfg.samples.offsetY(s, cfg.format));
+          cfg.rasterMode == RasterMode::Float
+              ? coverTileFloat(t.floatEdges, t.bounds, tileX, tileY)
+              : coverTile(cfg.kernel, t.edges, t.bounds, tileX, tileY, cfg.format,
+                          cfg.samples.offsetX(s, cfg.format), cfg.samples.offsetY(s, cfg.format));
       if (s == 0) {
         // Whole-tile outcomes are counted for sample 0, the only one without MSAA.
         if (c.kind == TileCoverage::Outside) ++stats.tilesTriviallyRejected;
@@ -344,6 +356,11 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
           interpolateDepth(t, ax + offMinX, by + offMaxY), interpolateDepth(t, bx + offMaxX, by + offMaxY)};
       triMin = std::min({corners[0], corners[1], corners[2], corners[3]});
       triMax = std::max({corners[0], corners[1], corners[2], corners[3]});
+      // Quantising is monotonic, so the quantised range bounds the quantised lanes.
+      if (cfg.quantize) {
+        triMin = cfg.quantize(triMin);
+        triMax = cfg.quantize(triMax);
+      }
       if (!stored.valid) {
         stored = {std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
                   false, true};
@@ -372,9 +389,11 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
     const int rowBegin = std::countr_zero(anySample) / kTileSize;
     const int rowEnd = (kTileLanes - 1 - std::countl_zero(anySample)) / kTileSize + 1;
     if (depthUsed)
-      for (int s = 0; s < S; ++s)
+      for (int s = 0; s < S; ++s) {
         depthLanes(t, x0, y0, cfg.samples.offsetXPixels(s), cfg.samples.offsetYPixels(s),
                    rowBegin, rowEnd, z[s]);
+        if (cfg.quantizeDepthLanes) cfg.quantizeDepthLanes(z[s], rowBegin, rowEnd);
+      }
 
     auto depthTest = [&] {
       uint64_t passed = 0;
@@ -480,6 +499,18 @@ void runBackEnd(Framebuffer& fb, const PipelineState& state, const TileBins& bin
   cfg.blend = state.blend;
   cfg.colorWriteMask = state.colorWriteMask;
   cfg.colorMerge = state.blend.enable || state.colorWriteMask != kWriteAll;
+  cfg.rasterMode = state.rasterMode;
+  switch (state.depth.format) {
+    case DepthFormat::Float32: break;
+    case DepthFormat::Unorm24:
+      cfg.quantizeDepthLanes = &quantizeLanes<DepthFormat::Unorm24>;
+      cfg.quantize = &quantizeDepth<DepthFormat::Unorm24>;
+      break;
+    case DepthFormat::Unorm16:
+      cfg.quantizeDepthLanes = &quantizeLanes<DepthFormat::Unorm16>;
+      cfg.quantize = &quantizeDepth<DepthFormat::Unorm16>;
+      break;
+  }
   cfg.target = {fb.colorPlane().data(), fb.depthPlane().data(),
                 fb.hasCounts() ? fb.countPlane().data() : nullptr};
   cfg.width = fb.width();
