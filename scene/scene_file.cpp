@@ -43,6 +43,11 @@ const Names<FixedPointFormat> kPrecisions = {
 const Names<BlendState> kBlendModes = {{"none", BlendState{}},
                                        {"alpha", BlendState::alphaBlend()},
                                        {"additive", BlendState::additive()}};
+const Names<DepthFormat> kDepthFormats = {{"float32", DepthFormat::Float32},
+                                          {"unorm24", DepthFormat::Unorm24},
+                                          {"unorm16", DepthFormat::Unorm16}};
+const Names<RasterMode> kRasterModes = {{"fixed-point", RasterMode::FixedPoint},
+                                        {"float", RasterMode::Float}};
 const Names<uint8_t> kWriteMasks = {{"rgba", uint8_t(kWriteAll)},
                                     {"rgb", uint8_t(kWriteRed | kWriteGreen | kWriteBlue)},
                                     {"alpha", uint8_t(kWriteAlpha)},
@@ -242,7 +247,9 @@ const std::vector<StateField>& stateFields() {
       boolField("depth_write", [](auto& s) -> auto& { return s.depth.write; }),
       boolField("early_depth", [](auto& s) -> auto& { return s.depth.early; }),
       boolField("color_write", [](auto& s) -> auto& { return s.colorWrite; }),
+      choiceField("depth_format", [](auto& s) -> auto& { return s.depth.format; }, kDepthFormats),
       choiceField("precision", [](auto& s) -> auto& { return s.format; }, kPrecisions),
+      choiceField("raster_mode", [](auto& s) -> auto& { return s.rasterMode; }, kRasterModes),
       choiceField("blend", [](auto& s) -> auto& { return s.blend; }, kBlendModes),
       choiceField("color_write_mask", [](auto& s) -> auto& { return s.colorWriteMask; },
                   kWriteMasks),

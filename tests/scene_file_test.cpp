@@ -115,6 +115,8 @@ TEST(SceneFile, EveryFieldRoundTrips) {
   e.transform.explicitMatrix = glm::mat4(2.0f);
   e.state.format = FixedPointFormat::withFractionBits(6);
   e.state.blend = BlendState::additive();
+  e.state.depth.format = DepthFormat::Unorm16;
+  e.state.rasterMode = RasterMode::Float;
   e.shader.kind = ShadingMode::Depth;
   e.shader.depthNear = 0.5f;
   e.shader.depthFar = 0.75f;
@@ -142,6 +144,8 @@ TEST(SceneFile, EveryFieldRoundTrips) {
   EXPECT_EQ(back.draws[0].state.colorWriteMask, kWriteRed | kWriteGreen | kWriteBlue);
   EXPECT_TRUE(back.draws[1].state.blend == BlendState::additive());
   EXPECT_EQ(back.draws[1].state.format, FixedPointFormat::withFractionBits(6));
+  EXPECT_EQ(back.draws[1].state.depth.format, DepthFormat::Unorm16);
+  EXPECT_EQ(back.draws[1].state.rasterMode, RasterMode::Float);
   EXPECT_EQ(back.background, s.background);
   EXPECT_EQ(back.clearDepth, s.clearDepth);
   EXPECT_EQ(back.camera.eye, s.camera.eye);
@@ -198,7 +202,8 @@ TEST(SceneFile, ErrorsNameFilePointerAndExpectation) {
   // Unknown keys, at every level: typos must not pass silently.
   EXPECT_EQ(errorOf(sceneWith(R"([{"mesh": "tri", "shader": "lambert", "state": {"cul": "back"}}])")),
             R"(dir/x.json: /draws/0/state/cul: unknown key; expected one of "cull", "front_face", )"
-            R"("depth_compare", "depth_write", "early_depth", "color_write", "precision")");
+            R"("depth_compare", "depth_write", "early_depth", "color_write", "depth_format", "precision", )"
+      R"("raster_mode", "blend", "color_write_mask")");
   EXPECT_EQ(errorOf(sceneWith(ok, R"(, "widht": 3)")).substr(0, 33), "dir/x.json: /widht: unknown key; ");
   EXPECT_EQ(errorOf(sceneWith(R"([{"mesh": "tri", "shader": {"name": "constant", "albedo": [1, 1, 1]}}])")),
             R"(dir/x.json: /draws/0/shader/albedo: unknown key; expected one of "name", "color")");
@@ -219,7 +224,8 @@ TEST(SceneFile, ErrorsNameFilePointerAndExpectation) {
             R"(dir/x.json: /draws/0/shader/name: expected one of "lambert", "normals", "depth", )"
             R"("triangle-id", "constant", found "phong")");
   EXPECT_EQ(errorOf(sceneWith(R"([{"mesh": "tri", "shader": "lambert", "state": {"precision": "20.8"}}])")),
-            R"(dir/x.json: /draws/0/state/precision: expected one of "24.4", "16.8", found "20.8")");
+            R"(dir/x.json: /draws/0/state/precision: expected one of "27.1", "26.2", "25.3", "24.4", )"
+      R"("23.5", "22.6", "21.7", "16.8", found "20.8")");
   EXPECT_EQ(errorOf(sceneWith(R"([{"mesh": "triangle", "shader": "lambert"}])")),
             R"(dir/x.json: /draws/0/mesh: expected a mesh named in /meshes: one of "tri", found "triangle")");
   EXPECT_EQ(errorOf(sceneWith(R"([{"shader": "lambert"}])")),
