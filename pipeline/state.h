@@ -44,7 +44,8 @@ struct DepthState {
   // after shading, to measure what early depth saves; results are identical either way.
   bool early = true;
   // What the depth buffer stores (depth_format.h): fragments are quantised to it before the
-  // compare and the write, and the pixel shader sees the quantised depth. Clear values should be
+  // compare and the write (the pixel shader's Fragment::depth is the interpolated value, as
+  // shaders on hardware see it). Clear values should be
   // representable in it (0 and 1 are in every format).
   DepthFormat format = DepthFormat::Float32;
 };
