@@ -39,9 +39,10 @@ void TileBins::addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>&
   const int64_t sy0 = pixelCentreSubpixels(ty0 * kTileSize, format) - sampleReach;
   for (int i = 0; i < 3; ++i) {
     rowStart[i] = edges[i].at(sx0, sy0);
-    stepX[i] = edges[i].a * tileStep;
-    stepY[i] = edges[i].b * tileStep;
-    highest[i] = std::max<int64_t>(edges[i].a * span, 0) + std::max<int64_t>(edges[i].b * span, 0);
+    stepX[i] = int64_t{edges[i].a} * tileStep;
+    stepY[i] = int64_t{edges[i].b} * tileStep;
+    highest[i] = std::max<int64_t>(int64_t{edges[i].a} * span, 0) +
+                 std::max<int64_t>(int64_t{edges[i].b} * span, 0);
   }
   for (int ty = ty0; ty <= ty1; ++ty) {
     std::array<int64_t, 3> e = rowStart;

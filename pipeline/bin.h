@@ -33,10 +33,12 @@ class TileBins {
   }
 
   // Bins every triangle of `chunks` (a range of ranges of objects with `edges` and `bounds`),
-  // naming triangle i of chunk c by id(c, i). `sampleReach`: see classifyTile.
+  // naming triangle i of chunk c by id(c, i). `sampleReach`: see classifyTile. Float mode passes
+  // the triangles' float edges, chunk for chunk, in `floatChunks`.
   template <class Chunks, class IdOf>
   void build(const Chunks& chunks, FixedPointFormat format, int32_t sampleReach, IdOf&& id,
-             PipelineStatistics& stats, RasterMode mode = RasterMode::FixedPoint) {
+             PipelineStatistics& stats,
+             const std::vector<ScratchVector<FloatEdges>>* floatChunks = nullptr) {
     // Groups of consecutive chunks, a few per thread: the counting sort keeps a count per
     // (group, tile), so more groups than threads only cost memory. The grouping does not change
     // the result: every bin lists its triangles in submission order.
@@ -49,7 +51,7 @@ class TileBins {
       for (size_t c = begin; c < end; ++c)
         for (size_t i = 0; i < chunks[c].size(); ++i)
           addTriangle(id(c, i), chunks[c][i].edges,
-                      mode == RasterMode::Float ? &chunks[c][i].floatEdges : nullptr,
+                      floatChunks ? &(*floatChunks)[c][i] : nullptr,
                       chunks[c][i].bounds, format, sampleReach, entries[g], groupStats[g]);
     });
     for (const PipelineStatistics& s : groupStats) stats += s;

@@ -63,7 +63,7 @@ Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>&
 
     TileBins bins(fb.width(), fb.height());
     bins.build(triangles.chunks, state.format, sampleReach, &SetupTriangles<N>::id, local,
-               state.rasterMode);
+               state.rasterMode == RasterMode::Float ? &triangles.floatChunks : nullptr);
     local.binEntries += bins.entryCount();
     if (exec.capture) exec.capture->record(bins, triangles);
     clock.lap(&StageTimings::bin);

@@ -42,11 +42,17 @@ template <int N>
 void clipAndSetup(const TransformedVertices<N>& in, const ScratchVector<VertexClipCodes>& codes,
                   uint32_t begin, uint32_t end, const SetupContext& ctx,
                   const ClipPlanes& planes, ScratchVector<SetupTriangle<N>>& out,
-                  PipelineStatistics& stats) {
+                  ScratchVector<FloatEdges>* floatOut, PipelineStatistics& stats) {
   stats.inputTriangles += end - begin;
   out.reserve(out.size() + (end - begin));
+  if (floatOut) floatOut->reserve(floatOut->size() + (end - begin));
   ClipPolygon<N> polygon;
   SetupTriangle<N> triangle;
+  FloatEdges floatEdges;
+  auto emit = [&] {
+    out.push_back(triangle);
+    if (floatOut) floatOut->push_back(floatEdges);
+  };
   for (uint32_t t = begin; t < end; ++t) {
     const uint32_t i0 = in.indices[3 * t], i1 = in.indices[3 * t + 1], i2 = in.indices[3 * t + 2];
     const VertexClipCodes &c0 = codes[i0], &c1 = codes[i1], &c2 = codes[i2];
@@ -63,7 +69,7 @@ void clipAndSetup(const TransformedVertices<N>& in, const ScratchVector<VertexCl
     const unsigned crossed = c0.clip | c1.clip | c2.clip;
     if (!crossed) {
       ++stats.clipOutputTriangles;
-      if (setupTriangle<N>(tri, ctx, t, triangle, stats)) out.push_back(triangle);
+      if (setupTriangle<N>(tri, ctx, t, triangle, floatEdges, stats)) emit();
       continue;
     }
     ++stats.clipClipped;
@@ -73,7 +79,7 @@ void clipAndSetup(const TransformedVertices<N>& in, const ScratchVector<VertexCl
       ++stats.clipOutputTriangles;
       const std::array<const ClippedVertex<N>*, 3> part = {
           &polygon.vertices[0], &polygon.vertices[k], &polygon.vertices[k + 1]};
-      if (setupTriangle<N>(part, ctx, t, triangle, stats)) out.push_back(triangle);
+      if (setupTriangle<N>(part, ctx, t, triangle, floatEdges, stats)) emit();
     }
   }
 }
@@ -93,10 +99,15 @@ struct SetupTriangles {
   static_assert(kInputChunk * (kMaxClipVertices - 2) <= (size_t{1} << kLocalBits));
 
   std::vector<ScratchVector<SetupTriangle<N>>> chunks;
+  // RasterMode::Float only (empty otherwise): each triangle's float edges, in the same places.
+  std::vector<ScratchVector<FloatEdges>> floatChunks;
 
   static uint32_t id(size_t chunk, size_t local) { return uint32_t(chunk << kLocalBits | local); }
   const SetupTriangle<N>& operator[](uint32_t id) const {
     return chunks[id >> kLocalBits][id & ((uint32_t{1} << kLocalBits) - 1)];
+  }
+  const FloatEdges& floatEdges(uint32_t id) const {
+    return floatChunks[id >> kLocalBits][id & ((uint32_t{1} << kLocalBits) - 1)];
   }
   size_t size() const {
     size_t n = 0;
@@ -114,10 +125,12 @@ void clipAndSetupAll(const TransformedVertices<N>& in, const SetupContext& ctx,
   const size_t triangleCount = in.indices.size() / 3;
   const size_t chunks = chunkCount(triangleCount, kChunk);
   out.chunks.resize(chunks);
+  const bool floatMode = ctx.rasterMode == RasterMode::Float;
+  out.floatChunks.resize(floatMode ? chunks : 0);
   std::vector<PipelineStatistics> partStats(chunks);
   forEachChunk(triangleCount, kChunk, [&](size_t c, size_t begin, size_t end) {
     clipAndSetup(in, codes, uint32_t(begin), uint32_t(end), ctx, planes, out.chunks[c],
-                 partStats[c]);
+                 floatMode ? &out.floatChunks[c] : nullptr, partStats[c]);
   });
   for (const PipelineStatistics& s : partStats) stats += s;
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <type_traits>
 #include <cmath>
 #include <cstdint>
 
@@ -16,18 +17,24 @@
 
 namespace rast {
 
+struct NoPlane {};
+
 // Everything the back end needs of one triangle. N: varyings the pixel shader reads.
+// Kept small, since a draw writes one per triangle and the back end reads it once per tile it
+// touches (W2 tiny-1: two million a frame): with no varyings it is 88 bytes, with three 136. 1/w
+// is stored only when there are varyings to correct, and float mode's edges live beside the
+// triangles (SetupTriangles::floatChunks).
 template <int N>
 struct SetupTriangle {
   std::array<EdgeFunction, 3> edges;
-  FloatEdges floatEdges;  // RasterMode::Float only
   PixelRect bounds;  // planes are anchored at the centre of pixel (bounds.x0, bounds.y0)
   PlaneEquation depth;
-  PlaneEquation invW;
-  std::array<PlaneEquation, N> varyingsOverW;
   uint32_t primitiveId = 0;
   bool frontFacing = true;
+  [[no_unique_address]] std::conditional_t<(N > 0), PlaneEquation, NoPlane> invW;
+  [[no_unique_address]] std::array<PlaneEquation, N> varyingsOverW;
 };
+static_assert(sizeof(SetupTriangle<0>) == 88 && sizeof(SetupTriangle<3>) == 136);
 
 // Draw-time constants of setup.
 struct SetupContext {
@@ -42,11 +49,13 @@ struct SetupContext {
 };
 
 // Sets up one triangle whose vertices lie inside the guard band (the clipper made sure). Returns
-// false, having counted why, when it draws nothing.
+// false, having counted why, when it draws nothing. In float mode the float edges go to
+// `floatEdges`.
 // V: ShadedVertex<N> (unclipped) or ClippedVertex<N>, with `position` and `varyings`.
 template <int N, class V>
 bool setupTriangle(const std::array<const V*, 3>& v, const SetupContext& ctx,
-                   uint32_t primitiveId, SetupTriangle<N>& out, PipelineStatistics& stats) {
+                   uint32_t primitiveId, SetupTriangle<N>& out, FloatEdges& floatEdges,
+                   PipelineStatistics& stats) {
   std::array<WindowPosition, 3> w;
   for (int i = 0; i < 3; ++i) {
     w[i] = ctx.mapping.toWindow(glm::dvec4(v[i]->position));
@@ -64,7 +73,7 @@ bool setupTriangle(const std::array<const V*, 3>& v, const SetupContext& ctx,
   const bool floatMode = ctx.rasterMode == RasterMode::Float;
   const SetupOutcome outcome =
       floatMode ? setupFloatCoverage({w[0].x, w[1].x, w[2].x}, {w[0].y, w[1].y, w[2].y},
-                                     ctx.clipRect, coverage, out.floatEdges)
+                                     ctx.clipRect, coverage, floatEdges)
                 : setupCoverage(snapped, ctx.clipRect, ctx.format, coverage, ctx.fillRule,
                                 ctx.sampleReach);
   if (outcome == SetupOutcome::ZeroArea) {
@@ -96,8 +105,8 @@ bool setupTriangle(const std::array<const V*, 3>& v, const SetupContext& ctx,
   for (int i = 0; i < 3; ++i) {
     // (Float mode widens the floats setupFloatCoverage stored, not double(float(w[i].x)) here:
     // GCC 12 at -O2 and above drops that rounding in one lane of the vectorized loop.)
-    x[i] = floatMode ? out.floatEdges.x[i] : subpixelsToPixels(snapped[i].x, ctx.format);
-    y[i] = floatMode ? out.floatEdges.y[i] : subpixelsToPixels(snapped[i].y, ctx.format);
+    x[i] = floatMode ? floatEdges.x[i] : subpixelsToPixels(snapped[i].x, ctx.format);
+    y[i] = floatMode ? floatEdges.y[i] : subpixelsToPixels(snapped[i].y, ctx.format);
     depth[i] = w[i].z;
     invW[i] = w[i].invW;
   }
@@ -105,7 +114,7 @@ bool setupTriangle(const std::array<const V*, 3>& v, const SetupContext& ctx,
   const double inv = 1.0 / signedArea;
   const int ax = out.bounds.x0, ay = out.bounds.y0;
   out.depth = PlaneEquation::through(x, y, depth, inv, ax, ay);
-  out.invW = PlaneEquation::through(x, y, invW, inv, ax, ay);
+  if constexpr (N > 0) out.invW = PlaneEquation::through(x, y, invW, inv, ax, ay);
   for (int k = 0; k < N; ++k) {
     std::array<double, 3> overW;
     for (int i = 0; i < 3; ++i) overW[i] = double(v[i]->varyings[k]) * w[i].invW;

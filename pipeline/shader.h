@@ -10,6 +10,9 @@
 //   PixelResult operator()(const Fragment<M>&) const;
 // and optionally
 //   static constexpr bool kDerivatives = true;  run on 2x2 quads: Fragment::ddx/ddy are filled
+//   static constexpr bool kPerTriangle = true;  the result depends on nothing but primitiveId and
+//                                               frontFacing (and kVaryings == 0): run once per
+//                                               triangle and tile, not per pixel
 // Shaders are called through templates, so they inline into the stage loops.
 #pragma once
 

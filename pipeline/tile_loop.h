@@ -36,11 +36,29 @@ inline constexpr int kTileLanes = kTileSize * kTileSize;
 template <class T>
 using TileLanes = std::array<T, kTileLanes>;
 
-// A tile's copy of the framebuffer: per sample plane, 64 lanes in coverage-bit order.
+// The pixel shader's colours for a tile, one array per channel, so that packing them to RGBA8
+// runs over whole rows of lanes in a loop the compiler vectorises. Lanes that were not shaded
+// hold stale (or the initial zero) values: they are packed and never written.
+struct ShadedColors {
+  TileLanes<float> r{}, g{}, b{}, a{};
+
+  void set(int lane, glm::vec4 c) {
+    r[lane] = c.r;
+    g[lane] = c.g;
+    b[lane] = c.b;
+    a[lane] = c.a;
+  }
+  glm::vec4 at(int lane) const { return {r[lane], g[lane], b[lane], a[lane]}; }
+};
+
+// A tile's copy of the framebuffer: per sample plane, 64 lanes in coverage-bit order; and the
+// per-triangle work arrays, kept here so that a task allocates them once for all its tiles.
 struct TileBuffer {
   std::array<TileLanes<float>, kMaxSamples> depth;
   std::array<TileLanes<PackedColor>, kMaxSamples> color;
   TileLanes<uint32_t> counts;
+  ShadedColors shaded;
+  TileLanes<PackedColor> packed{};
 };
 
 // Bounds of the depth values stored in a tile, so a triangle whose depth range lies entirely on
@@ -172,12 +190,27 @@ void quantizeLanes(TileLanes<float>& z, int rowBegin, int rowEnd) {
 template <class PS>
 constexpr bool kTakesDerivatives = requires { requires PS::kDerivatives; };
 
+// Shaders that declare `static constexpr bool kPerTriangle = true` return the same result for
+// every fragment of a triangle (they read only primitiveId and frontFacing): they run once per
+// triangle and tile, and the colour is packed once. The statistics still count one invocation per
+// pixel, the work the pipeline stands for, so that no counter depends on this shortcut.
+template <class PS>
+constexpr bool kShadesPerTriangle = requires { requires PS::kPerTriangle; };
+
+// RGBA8 of the lanes of `lanes` (packColor): lane by lane, since shaded triangles are mostly small
+// (W1: a few pixels per row), and GCC does not vectorise the clamp's float compares.
+inline void packLanes(const ShadedColors& c, CoverageMask lanes, TileLanes<PackedColor>& out) {
+  for (CoverageMask m = lanes; m; m &= m - 1) {
+    const int i = std::countr_zero(m);
+    out[i] = packColor(c.at(i));
+  }
+}
+
 // Runs the pixel shader on the pixels of `pixels` and stores their colours in `out`; returns the
 // pixels that were not discarded.
 template <PixelShader PS, int N>
 CoverageMask shadePixels(const SetupTriangle<N>& t, int x0, int y0, CoverageMask pixels,
-                         const PS& shader, TileLanes<glm::vec4>& out,
-                         PipelineStatistics& stats) {
+                         const PS& shader, ShadedColors& out, PipelineStatistics& stats) {
   CoverageMask kept = pixels;
   auto shadeOne = [&](int bit, Fragment<N>& fragment) {
     const int px = x0 + bit % kTileSize, py = y0 + bit / kTileSize;
@@ -194,7 +227,7 @@ CoverageMask shadePixels(const SetupTriangle<N>& t, int x0, int y0, CoverageMask
         return;
       }
     }
-    out[bit] = result.color;
+    out.set(bit, result.color);
   };
 
   if constexpr (kTakesDerivatives<PS>) {
@@ -241,6 +274,8 @@ CoverageMask shadePixels(const SetupTriangle<N>& t, int x0, int y0, CoverageMask
   return kept;
 }
 
+// to[i] = from[i] for the lanes i of `mask`; lane by lane over the set bits (triangles are mostly
+// small; a row-by-row version measured slower on W1 and W4).
 template <class T>
 void copyLanesWhere(CoverageMask mask, const TileLanes<T>& from, TileLanes<T>& to) {
   if (mask == kFullMask) {
@@ -251,6 +286,15 @@ void copyLanesWhere(CoverageMask mask, const TileLanes<T>& from, TileLanes<T>& t
     const int bit = std::countr_zero(m);
     to[bit] = from[bit];
   }
+}
+
+template <class T>
+void fillLanesWhere(CoverageMask mask, T value, TileLanes<T>& to) {
+  if (mask == kFullMask) {
+    to.fill(value);
+    return;
+  }
+  for (CoverageMask m = mask; m; m &= m - 1) to[std::countr_zero(m)] = value;
 }
 
 // One tile: its framebuffer values in, every binned triangle in order, the values out.
@@ -314,8 +358,39 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
   bool depthDirty = false, colorDirty = false, countsDirty = false;
   std::array<CoverageMask, kMaxSamples> mask;
   std::array<TileLanes<float>, kMaxSamples> z;
-  TileLanes<glm::vec4> shaded;
-  TileLanes<PackedColor> packed;
+  ShadedColors& shaded = tile.shaded;
+  TileLanes<PackedColor>& packed = tile.packed;
+  glm::vec4 triangleColor{};  // kShadesPerTriangle: the one result
+
+  // Deferred whole-tile writes, as a GPU keeps a tile's depth as a plane until a pixel needs its
+  // own value: a triangle that covers every sample of a full tile, passes the depth test on all
+  // of them by the tile's bounds and writes one colour (a per-triangle shader) replaces the whole
+  // tile, so its depth plane and colour are remembered instead of written to 64 lanes. The lanes
+  // are written (the same depthLanes and packColor, so the same bits) only when a later triangle
+  // reads or partly writes them, or when the tile is stored. Overdraw of full layers (W3) then
+  // costs one coverage and bounds test per layer and tile.
+  const SetupTriangle<N>* pendingDepth = nullptr;
+  bool pendingColor = false;
+  PackedColor pendingColorValue = 0;
+  auto writePending = [&] {
+    if (pendingDepth)
+      for (int s = 0; s < S; ++s) {
+        depthLanes(*pendingDepth, x0, y0, cfg.samples.offsetXPixels(s),
+                   cfg.samples.offsetYPixels(s), 0, kTileSize, tile.depth[s]);
+        if (cfg.quantizeDepthLanes) cfg.quantizeDepthLanes(tile.depth[s], 0, kTileSize);
+      }
+    if (pendingColor)
+      for (int s = 0; s < S; ++s) tile.color[s].fill(pendingColorValue);
+    pendingDepth = nullptr;
+    pendingColor = false;
+  };
+  // Whether a triangle covering every sample of the tile may be deferred: nothing of it depends
+  // on a lane's stored value or differs from lane to lane. (Padding lanes of an edge tile would
+  // get plane values instead of a copy of lane 0, so edge tiles are never deferred.)
+  const bool mayDefer = validLanes == kFullMask && !counting && !cfg.colorMerge &&
+                        (!depthRead || earlyTest) && !PS::kMayDiscard &&
+                        (kShadesPerTriangle<PS> || !cfg.colorWrite) &&
+                        (cfg.depthWrite || cfg.colorWrite);
 
   for (size_t b = 0; b < bin.size(); ++b) {
     const SetupTriangle<N>& t = triangles[bin[b]];
@@ -331,7 +406,7 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
     for (int s = 0; s < S; ++s) {
       const TileCoverageResult c =
           cfg.rasterMode == RasterMode::Float
-              ? coverTileFloat(t.floatEdges, t.bounds, tileX, tileY)
+              ? coverTileFloat(triangles.floatEdges(bin[b]), t.bounds, tileX, tileY)
               : coverTile(cfg.kernel, t.edges, t.bounds, tileX, tileY, cfg.format,
                           cfg.samples.offsetX(s, cfg.format), cfg.samples.offsetY(s, cfg.format));
       if (s == 0) {
@@ -362,6 +437,7 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
         triMax = cfg.quantize(triMax);
       }
       if (!stored.valid) {
+        writePending();
         stored = {std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
                   false, true};
         for (int s = 0; s < S; ++s) {
@@ -384,6 +460,37 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
         continue;
       }
     }
+
+    bool coversAll = mayDefer;
+    for (int s = 0; s < S && coversAll; ++s) coversAll = mask[s] == kFullMask;
+    if (coversAll && (!depthRead || (useBounds && allPass(cfg.compare, triMin, triMax, stored)))) {
+      if (depthRead) stats.depthTestsPassed += covered;
+      if constexpr (kShadesPerTriangle<PS>) {
+        if (cfg.colorWrite) {
+          // Run once, at the tile's first pixel, as the per-triangle path below does.
+          Fragment<N> fragment;
+          fragment.x = x0;
+          fragment.y = y0;
+          fragment.depth = interpolateDepth(t, float(x0 - t.bounds.x0), float(y0 - t.bounds.y0));
+          fragment.frontFacing = t.frontFacing;
+          fragment.primitiveId = t.primitiveId;
+          pendingColorValue = packColor(shader(fragment).color);
+          pendingColor = colorDirty = true;
+          stats.pixelShaderInvocations += kTileLanes;
+        }
+      }
+      if (cfg.depthWrite) {
+        pendingDepth = &t;
+        depthDirty = true;
+        if (stored.valid) {
+          if (triMin == triMin && triMax == triMax) stored = {triMin, triMax, false, true};
+          else stored.valid = false;
+        }
+      }
+      stats.fragmentsWritten += kTileLanes;
+      continue;
+    }
+    writePending();
 
     // Rows the triangle covers here: small triangles touch few, and only those are evaluated.
     const int rowBegin = std::countr_zero(anySample) / kTileSize;
@@ -415,7 +522,29 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
     }
 
     if (shade) {
-      const CoverageMask kept = shadePixels(t, x0, y0, anySample, shader, shaded, stats);
+      CoverageMask kept = anySample;
+      if constexpr (kShadesPerTriangle<PS>) {
+        static_assert(N == 0, "a shader run once per triangle reads no varyings");
+        const int bit = std::countr_zero(anySample);
+        Fragment<N> fragment;
+        fragment.x = x0 + bit % kTileSize;
+        fragment.y = y0 + bit / kTileSize;
+        fragment.depth = interpolateDepth(t, float(fragment.x - t.bounds.x0),
+                                          float(fragment.y - t.bounds.y0));
+        fragment.frontFacing = t.frontFacing;
+        fragment.primitiveId = t.primitiveId;
+        const PixelResult result = shader(fragment);
+        stats.pixelShaderInvocations += uint64_t(popcount64(anySample));
+        if constexpr (PS::kMayDiscard) {
+          if (result.discard) {
+            stats.fragmentsDiscarded += uint64_t(popcount64(anySample));
+            kept = 0;
+          }
+        }
+        triangleColor = result.color;
+      } else {
+        kept = shadePixels(t, x0, y0, anySample, shader, shaded, stats);
+      }
       if (kept != anySample) {
         anySample = kept;
         for (int s = 0; s < S; ++s) mask[s] &= kept;
@@ -452,16 +581,16 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
         for (int s = 0; s < S; ++s) {
           for (CoverageMask m = mask[s]; m; m &= m - 1) {
             const int i = std::countr_zero(m);
-            tile.color[s][i] =
-                blendAndPack(shaded[i], tile.color[s][i], cfg.blend, cfg.colorWriteMask);
+            const glm::vec4 src = kShadesPerTriangle<PS> ? triangleColor : shaded.at(i);
+            tile.color[s][i] = blendAndPack(src, tile.color[s][i], cfg.blend, cfg.colorWriteMask);
           }
           if (cfg.blend.enable) stats.samplesBlended += uint64_t(popcount64(mask[s]));
         }
+      } else if constexpr (kShadesPerTriangle<PS>) {
+        const PackedColor c = packColor(triangleColor);
+        for (int s = 0; s < S; ++s) fillLanesWhere(mask[s], c, tile.color[s]);
       } else {
-        for (CoverageMask m = anySample; m; m &= m - 1) {
-          const int i = std::countr_zero(m);
-          packed[i] = packColor(shaded[i]);
-        }
+        packLanes(shaded, anySample, packed);
         for (int s = 0; s < S; ++s) copyLanesWhere(mask[s], packed, tile.color[s]);
       }
       colorDirty = true;
@@ -473,6 +602,7 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
     stats.fragmentsWritten += uint64_t(popcount64(anySample));
   }
 
+  writePending();
   if (depthDirty)
     for (int s = 0; s < S; ++s) store(target.depth + s * planeSize, tile.depth[s]);
   if (colorDirty)

@@ -43,7 +43,7 @@ TileCoverage classifyTile(const std::array<EdgeFunction, 3>& edges, const PixelR
   bool allInside = true;
   for (const EdgeFunction& e : edges) {
     const int64_t e00 = e.at(sx0, sy0);
-    const int64_t dx = e.a * span, dy = e.b * span;
+    const int64_t dx = int64_t{e.a} * span, dy = int64_t{e.b} * span;
     const int64_t lo = e00 + std::min<int64_t>(dx, 0) + std::min<int64_t>(dy, 0);
     const int64_t hi = e00 + std::max<int64_t>(dx, 0) + std::max<int64_t>(dy, 0);
     if (hi < 0) return TileCoverage::Outside;

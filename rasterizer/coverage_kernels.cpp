@@ -142,7 +142,7 @@ TileCoverageResult coverTile(const CoverageKernel& kernel,
   TileEdgeSteps steps{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, 0};
   bool needsWide = false;
   for (const EdgeFunction& e : edges) {
-    const int64_t e00 = e.at(sx0, sy0), dx = e.a * step, dy = e.b * step;
+    const int64_t e00 = e.at(sx0, sy0), dx = int64_t{e.a} * step, dy = int64_t{e.b} * step;
     const int64_t spanX = (kTileSize - 1) * dx, spanY = (kTileSize - 1) * dy;
     const int64_t lo = e00 + std::min<int64_t>(spanX, 0) + std::min<int64_t>(spanY, 0);
     const int64_t hi = e00 + std::max<int64_t>(spanX, 0) + std::max<int64_t>(spanY, 0);

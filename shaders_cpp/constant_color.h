@@ -8,6 +8,7 @@ namespace rast {
 struct ConstantColorShader {
   static constexpr int kVaryings = 0;
   static constexpr bool kMayDiscard = false;
+  static constexpr bool kPerTriangle = true;  // shaded once per triangle and tile
   glm::vec4 color{1.0f};
 
   PixelResult operator()(const Fragment<0>&) const { return {color}; }

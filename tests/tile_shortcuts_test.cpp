@@ -1,0 +1,158 @@
+// The back end's shortcuts change no output bit: a shader declared kPerTriangle (run once per
+// triangle and tile) and the deferred whole-tile writes it allows (a tile's depth kept as the
+// covering triangle's plane until a lane is needed) give the colour, depth and statistics of the
+// same shader run per pixel with every lane written at once.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+#include <glm/vec2.hpp>
+
+#include "pipeline/draw.h"
+#include "shaders_cpp/window_space.h"
+
+namespace rast {
+namespace {
+
+// The colour depends on the triangle alone, so layers and small triangles are told apart.
+glm::vec4 colorOfTriangle(uint32_t primitiveId, bool frontFacing) {
+  return {float(primitiveId % 7) / 6.0f, float(primitiveId % 5) / 4.0f, frontFacing ? 1.0f : 0.25f,
+          1.0f};
+}
+
+struct PerTriangleShader {
+  static constexpr int kVaryings = 0;
+  static constexpr bool kMayDiscard = false;
+  static constexpr bool kPerTriangle = true;
+  PixelResult operator()(const Fragment<0>& f) const {
+    return {colorOfTriangle(f.primitiveId, f.frontFacing)};
+  }
+};
+
+// The same shader without the declaration: shaded per pixel, every write per lane.
+struct PerPixelShader {
+  static constexpr int kVaryings = 0;
+  static constexpr bool kMayDiscard = false;
+  PixelResult operator()(const Fragment<0>& f) const {
+    return {colorOfTriangle(f.primitiveId, f.frontFacing)};
+  }
+};
+
+struct Scene {
+  int width, height;
+  std::vector<WindowVertex> vertices;
+  std::vector<uint32_t> indices;
+};
+
+void addQuad(Scene& s, float x0, float y0, float x1, float y1, float z) {
+  const uint32_t base = uint32_t(s.vertices.size());
+  for (glm::vec2 p : {glm::vec2(x0, y0), glm::vec2(x1, y0), glm::vec2(x1, y1), glm::vec2(x0, y1)})
+    s.vertices.push_back({glm::vec3(p, z)});
+  for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) s.indices.push_back(base + k);
+}
+
+// Full-screen layers at sloped and flat depths, in both orders, with small random triangles
+// between them (they read and partly write tiles whose depth is still a deferred plane) and a
+// size that leaves partial tiles at the right and bottom edges.
+Scene layeredScene(uint32_t seed) {
+  Scene s{203, 117, {}, {}};
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (int layer = 0; layer < 12; ++layer) {
+    const int order = layer < 6 ? 5 - layer : layer;  // far to near, then near to far
+    const float z = 0.1f + 0.07f * float(order);
+    if (layer % 3 == 2) {
+      // A sloped layer: depth varies across every tile.
+      const uint32_t base = uint32_t(s.vertices.size());
+      s.vertices.push_back({glm::vec3(-4, -4, z)});
+      s.vertices.push_back({glm::vec3(220, -4, z + 0.05f)});
+      s.vertices.push_back({glm::vec3(220, 130, z + 0.02f)});
+      s.vertices.push_back({glm::vec3(-4, 130, z - 0.03f)});
+      for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) s.indices.push_back(base + k);
+    } else {
+      addQuad(s, 0, 0, float(s.width), float(s.height), z);
+    }
+    for (int k = 0; k < 6; ++k) {
+      const uint32_t base = uint32_t(s.vertices.size());
+      const float cx = unit(rng) * float(s.width), cy = unit(rng) * float(s.height);
+      for (int v = 0; v < 3; ++v)
+        s.vertices.push_back({glm::vec3(cx + 30.0f * (unit(rng) - 0.5f),
+                                        cy + 30.0f * (unit(rng) - 0.5f), unit(rng))});
+      for (uint32_t v : {0u, 1u, 2u}) s.indices.push_back(base + v);
+    }
+  }
+  return s;
+}
+
+struct Result {
+  std::vector<PackedColor> color;
+  std::vector<float> depth;
+  PipelineStatistics stats;
+};
+
+template <class PS>
+Result render(const Scene& scene, const PipelineState& state, int samples, float clearDepth) {
+  Framebuffer fb(scene.width, scene.height, false, samples);
+  fb.clear(glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), clearDepth);
+  const WindowSpaceVertexShader vs;
+  const PS ps;
+  Result r;
+  // Two draws: the second starts on tiles the first left as planes, stored and loaded again.
+  for (int pass = 0; pass < 2; ++pass)
+    EXPECT_TRUE(draw(fb, state, DrawCall<WindowSpaceVertexShader, PS>{scene.vertices, scene.indices,
+                                                                      vs, ps},
+                     r.stats));
+  r.color = fb.colorPlane();
+  r.depth = fb.depthPlane();
+  return r;
+}
+
+TEST(TileShortcuts, PerTriangleShadingAndDeferredWritesChangeNoBit) {
+  const Scene scene = layeredScene(7);
+  int cases = 0;
+  for (int samples : {1, 4, 8})
+    for (DepthFormat format : {DepthFormat::Float32, DepthFormat::Unorm24, DepthFormat::Unorm16})
+      for (CompareOp compare : {CompareOp::Less, CompareOp::LessEqual, CompareOp::Greater,
+                                CompareOp::Always, CompareOp::Equal})
+        for (bool depthWrite : {true, false})
+          for (bool colorWrite : {true, false}) {
+            PipelineState state;
+            state.viewport = {0, 0, scene.width, scene.height};
+            state.positionSpace = PositionSpace::Window;
+            state.depth.compare = compare;
+            state.depth.write = depthWrite;
+            state.depth.format = format;
+            state.colorWrite = colorWrite;
+            const float clearDepth = compare == CompareOp::Greater ? 0.0f : 1.0f;
+            SCOPED_TRACE(testing::Message() << samples << " samples, format " << int(format)
+                                            << ", compare " << int(compare) << ", depth write "
+                                            << depthWrite << ", colour write " << colorWrite);
+            const Result perPixel = render<PerPixelShader>(scene, state, samples, clearDepth);
+            const Result perTriangle = render<PerTriangleShader>(scene, state, samples, clearDepth);
+            ASSERT_TRUE(perTriangle.color == perPixel.color);
+            ASSERT_EQ(std::memcmp(perTriangle.depth.data(), perPixel.depth.data(),
+                                  perPixel.depth.size() * sizeof(float)),
+                      0);
+            ASSERT_EQ(perTriangle.stats, perPixel.stats);
+            ++cases;
+          }
+  EXPECT_EQ(cases, 3 * 3 * 5 * 2 * 2);
+}
+
+// The scene exercises what it should: layers cover whole tiles (the deferred case) and later
+// triangles read them back.
+TEST(TileShortcuts, SceneHasWholeTileOverwritesAndPartialReads) {
+  const Scene scene = layeredScene(7);
+  PipelineState state;
+  state.viewport = {0, 0, scene.width, scene.height};
+  state.positionSpace = PositionSpace::Window;
+  const Result r = render<PerTriangleShader>(scene, state, 1, 1.0f);
+  EXPECT_GT(r.stats.tilesTriviallyAccepted, 12u * (203 / 8) * (117 / 8));
+  EXPECT_GT(r.stats.tilesPartial, 100u);
+  EXPECT_GT(r.stats.depthTestsFailed, 0u);
+  EXPECT_GT(r.stats.depthTestsPassed, 0u);
+}
+
+}  // namespace
+}  // namespace rast
