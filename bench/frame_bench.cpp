@@ -20,8 +20,12 @@ void runFrames(benchmark::State& state, const Geometry& geometry, RenderFrame re
                int samples = 1) {
   Framebuffer fb(kFrameWidth, kFrameHeight, false, samples);
   PipelineStatistics frame;
+  // Draws reuse their temporaries' memory from frame to frame, as an application rendering
+  // frames does (scratch_memory.h).
+  ScratchMemory memory;
   ExecutionOptions exec;
   exec.threads = int(state.range(1));
+  exec.memory = &memory;
   // Two untimed frames first, as the peer renders one before timing: the first frame of a
   // process pays for fresh pages (several times a warm frame's cost for W2's 2M triangles), and
   // a benchmark that runs a single timed iteration would report only that.

@@ -4,10 +4,12 @@
 
 namespace rast {
 
-TileBins::TileBins(int widthPixels, int heightPixels)
+TileBins::TileBins(int widthPixels, int heightPixels, ScratchMemory* memory)
     : tilesX_((widthPixels + kTileSize - 1) / kTileSize),
       tilesY_((heightPixels + kTileSize - 1) / kTileSize),
-      offsets_(size_t(tilesX_) * size_t(tilesY_) + 1, 0) {}
+      memory_(memory),
+      offsets_(size_t(tilesX_) * size_t(tilesY_) + 1, 0, ScratchAllocator<uint32_t>(memory)),
+      triangles_(ScratchAllocator<uint32_t>(memory)) {}
 
 void TileBins::addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
                            const FloatEdges* floatEdges, const PixelRect& bounds,
@@ -60,7 +62,7 @@ void TileBins::addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>&
 
 void TileBins::sortByTile(const std::vector<ScratchVector<Entry>>& chunks) {
   const size_t tiles = size_t(tileCount());
-  ScratchVector<uint32_t> cursor(chunks.size() * tiles, 0);  // per (chunk, tile): count, then slot
+  ScratchVector<uint32_t> cursor(chunks.size() * tiles, 0, ScratchAllocator<uint32_t>(memory_));  // per (chunk, tile): count, then slot
   tbb::parallel_for(size_t{0}, chunks.size(), [&](size_t c) {
     for (const Entry& e : chunks[c]) ++cursor[c * tiles + e.tile];
   });

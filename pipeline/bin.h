@@ -21,7 +21,8 @@ namespace rast {
 // order whatever the thread count.
 class TileBins {
  public:
-  TileBins(int widthPixels, int heightPixels);
+  // `memory`: where the bins and their temporaries are allocated (ExecutionOptions::memory).
+  TileBins(int widthPixels, int heightPixels, ScratchMemory* memory = nullptr);
 
   int tilesX() const { return tilesX_; }
   int tilesY() const { return tilesY_; }
@@ -45,7 +46,8 @@ class TileBins {
     const size_t maxGroups =
         std::min<size_t>(64, 4 * size_t(tbb::this_task_arena::max_concurrency()));
     const size_t groupSize = std::max<size_t>(1, (chunks.size() + maxGroups - 1) / maxGroups);
-    std::vector<ScratchVector<Entry>> entries(chunkCount(chunks.size(), groupSize));
+    std::vector<ScratchVector<Entry>> entries(chunkCount(chunks.size(), groupSize),
+                                              ScratchVector<Entry>(ScratchAllocator<Entry>(memory_)));
     std::vector<PipelineStatistics> groupStats(entries.size());
     forEachChunk(chunks.size(), groupSize, [&](size_t g, size_t begin, size_t end) {
       for (size_t c = begin; c < end; ++c)
@@ -71,6 +73,7 @@ class TileBins {
   void sortByTile(const std::vector<ScratchVector<Entry>>& chunks);
 
   int tilesX_, tilesY_;
+  ScratchMemory* memory_;
   ScratchVector<uint32_t> offsets_;    // bin t is triangles_[offsets_[t], offsets_[t + 1])
   ScratchVector<uint32_t> triangles_;
 };

@@ -48,7 +48,7 @@ Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>&
   tbb::task_arena arena(exec.threads > 0 ? exec.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     StageClock clock(exec.timings);
-    TransformedVertices<N> transformed;
+    TransformedVertices<N> transformed(exec.memory);
     runVertexStage<VS, N>(call.vertexShader, call.vertices, call.indices, transformed, local);
     clock.lap(&StageTimings::vertex);
 
@@ -61,7 +61,7 @@ Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>&
     clipAndSetupAll(transformed, setup, ClipPlanes::forState(state, mapping), triangles, local);
     clock.lap(&StageTimings::clipSetup);
 
-    TileBins bins(fb.width(), fb.height());
+    TileBins bins(fb.width(), fb.height(), exec.memory);
     bins.build(triangles.chunks, state.format, sampleReach, &SetupTriangles<N>::id, local,
                state.rasterMode == RasterMode::Float ? &triangles.floatChunks : nullptr);
     local.binEntries += bins.entryCount();

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include <tbb/parallel_for.h>
-#include <tbb/scalable_allocator.h>
 
+#include "pipeline/scratch_memory.h"
 #include "rasterizer/coverage_kernels.h"
 
 namespace rast {
@@ -20,24 +20,35 @@ struct DrawCapture;
 struct ExecutionOptions {
   int threads = 0;  // worker threads for a draw; 0: every hardware thread
   CoverageKernel coverage = bestCoverageKernel();
+  // Memory kept between draws (scratch_memory.h); null: each draw allocates its own. The same
+  // object may serve any number of draws, one after another or at once.
+  ScratchMemory* memory = nullptr;
   // Optional instrumentation (pipeline/instrumentation.h), filled when not null.
   StageTimings* timings = nullptr;
   DrawCapture* capture = nullptr;
 };
 
-// Per-draw temporaries, from oneTBB's scalable allocator. (It does not keep every large block
-// for the next draw: a warm W2 tiny-1 frame still page-faults through ~130 MB; a persistent
-// per-context arena is the fix.) Growing one default-initialises its elements: every user
-// writes each element before reading it, so zeroing them first would be a wasted pass.
+// Per-draw temporaries: from `memory` when the draw was given one (ExecutionOptions::memory,
+// scratch_memory.h), which keeps large blocks for the next draw, else from oneTBB's scalable
+// allocator. Growing one default-initialises its elements: every user writes each element before
+// reading it, so zeroing them first would be a wasted pass.
 template <class T>
-struct ScratchAllocator : tbb::scalable_allocator<T> {
-  template <class U>
-  struct rebind {
-    using other = ScratchAllocator<U>;
-  };
+struct ScratchAllocator {
+  using value_type = T;
+  using propagate_on_container_copy_assignment = std::true_type;
+  using propagate_on_container_move_assignment = std::true_type;
+  using propagate_on_container_swap = std::true_type;
+
+  ScratchMemory* memory = nullptr;
+
   ScratchAllocator() = default;
+  explicit ScratchAllocator(ScratchMemory* m) noexcept : memory(m) {}
   template <class U>
-  ScratchAllocator(const ScratchAllocator<U>&) noexcept {}
+  ScratchAllocator(const ScratchAllocator<U>& other) noexcept : memory(other.memory) {}
+
+  T* allocate(size_t n) { return static_cast<T*>(scratchAllocate(memory, n * sizeof(T))); }
+  void deallocate(T* p, size_t n) noexcept { scratchDeallocate(memory, p, n * sizeof(T)); }
+
   template <class U>
   void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
     ::new (static_cast<void*>(p)) U;
@@ -45,6 +56,10 @@ struct ScratchAllocator : tbb::scalable_allocator<T> {
   template <class U, class... Args>
   void construct(U* p, Args&&... args) {
     ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+  template <class U>
+  bool operator==(const ScratchAllocator<U>& other) const noexcept {
+    return memory == other.memory;
   }
 };
 

@@ -24,7 +24,8 @@ struct VertexClipCodes {
 template <int N>
 ScratchVector<VertexClipCodes> computeClipCodes(const ScratchVector<ShadedVertex<N>>& vertices,
                                               const ClipPlanes& planes) {
-  ScratchVector<VertexClipCodes> codes(vertices.size());
+  ScratchVector<VertexClipCodes> codes(vertices.size(),
+                                      ScratchAllocator<VertexClipCodes>(vertices.get_allocator()));
   forEachChunk(vertices.size(), 4096, [&](size_t, size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
       const glm::dvec4 p(vertices[i].position);
@@ -124,9 +125,10 @@ void clipAndSetupAll(const TransformedVertices<N>& in, const SetupContext& ctx,
   constexpr size_t kChunk = SetupTriangles<N>::kInputChunk;
   const size_t triangleCount = in.indices.size() / 3;
   const size_t chunks = chunkCount(triangleCount, kChunk);
-  out.chunks.resize(chunks);
+  const ScratchAllocator<std::byte> memory(in.indices.get_allocator());
+  out.chunks.resize(chunks, ScratchVector<SetupTriangle<N>>(memory));
   const bool floatMode = ctx.rasterMode == RasterMode::Float;
-  out.floatChunks.resize(floatMode ? chunks : 0);
+  out.floatChunks.resize(floatMode ? chunks : 0, ScratchVector<FloatEdges>(memory));
   std::vector<PipelineStatistics> partStats(chunks);
   forEachChunk(triangleCount, kChunk, [&](size_t c, size_t begin, size_t end) {
     clipAndSetup(in, codes, uint32_t(begin), uint32_t(end), ctx, planes, out.chunks[c],

@@ -14,6 +14,11 @@ namespace rast {
 
 template <int N>
 struct TransformedVertices {
+  // `memory`: where this and everything the front end derives from it is allocated.
+  explicit TransformedVertices(ScratchMemory* memory = nullptr)
+      : vertices(ScratchAllocator<ShadedVertex<N>>(memory)),
+        indices(ScratchAllocator<uint32_t>(memory)) {}
+
   ScratchVector<ShadedVertex<N>> vertices;  // in order of first use
   ScratchVector<uint32_t> indices;          // the draw's indices, renumbered into `vertices`
 };
@@ -27,8 +32,8 @@ void runVertexStage(const VS& shader, std::span<const typename VS::Vertex> verti
   static_assert(N <= VS::kVaryings, "the pixel shader reads more varyings than the vertex shader writes");
   // Numbering unique indices in order of first use is sequential and cheap; shading is not.
   constexpr uint32_t kNotSeen = ~uint32_t{0};
-  ScratchVector<uint32_t> slot(vertices.size(), kNotSeen);
-  ScratchVector<uint32_t> unique;
+  ScratchVector<uint32_t> slot(vertices.size(), kNotSeen, out.indices.get_allocator());
+  ScratchVector<uint32_t> unique(out.indices.get_allocator());
   out.indices.resize(indices.size());
   for (size_t i = 0; i < indices.size(); ++i) {
     uint32_t& s = slot[indices[i]];

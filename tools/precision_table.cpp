@@ -94,7 +94,9 @@ struct Timing {
 
 std::vector<Timing> timeWorkloads(const Workloads& w, FixedPointFormat format, RasterMode mode,
                                   DepthFormat depth, const Options& o) {
-  const ExecutionOptions exec{o.threads, bestCoverageKernel()};
+  ScratchMemory memory;
+  ExecutionOptions exec{o.threads, bestCoverageKernel()};
+  exec.memory = &memory;
   Framebuffer fb(workloads::kFrameWidth, workloads::kFrameHeight);
   std::vector<Timing> out;
   for (const bool colorWrite : {true, false}) {  // W1, then W4

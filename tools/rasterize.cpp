@@ -282,8 +282,10 @@ int run(const Options& o) {
     for (const CoverageKernel& k : availableCoverageKernels()) std::printf("%s\n", k.name.c_str());
     return 0;
   }
+  ScratchMemory memory;  // kept across the frames of an animation or a frame plan
   ExecutionOptions exec;
   exec.threads = o.threads;
+  exec.memory = &memory;
   if (!findCoverageKernel(o.coverageKernel, exec.coverage))
     return fail("coverage kernel '" + o.coverageKernel +
                 "' is not available on this machine (see --list-kernels)");
