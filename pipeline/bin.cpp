@@ -32,11 +32,11 @@ void TileBins::addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>&
       }
     return;
   }
-  // classifyTile's Outside test, stepped from tile to tile: per edge, its largest value over a
-  // tile's (reach-widened) sample rectangle is E at the rectangle's corner plus a constant.
+  // classifyTile, stepped from tile to tile: per edge, its largest and smallest values over a
+  // tile's (reach-widened) sample rectangle are E at the rectangle's corner plus constants.
   const int64_t span = (int64_t(kTileSize - 1) << format.fractionBits) + 2 * int64_t(sampleReach);
   const int64_t tileStep = int64_t(kTileSize) << format.fractionBits;
-  std::array<int64_t, 3> rowStart, stepX, stepY, highest;
+  std::array<int64_t, 3> rowStart, stepX, stepY, highest, lowest;
   const int64_t sx0 = pixelCentreSubpixels(tx0 * kTileSize, format) - sampleReach;
   const int64_t sy0 = pixelCentreSubpixels(ty0 * kTileSize, format) - sampleReach;
   for (int i = 0; i < 3; ++i) {
@@ -45,6 +45,8 @@ void TileBins::addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>&
     stepY[i] = int64_t{edges[i].b} * tileStep;
     highest[i] = std::max<int64_t>(int64_t{edges[i].a} * span, 0) +
                  std::max<int64_t>(int64_t{edges[i].b} * span, 0);
+    lowest[i] = std::min<int64_t>(int64_t{edges[i].a} * span, 0) +
+                std::min<int64_t>(int64_t{edges[i].b} * span, 0);
   }
   for (int ty = ty0; ty <= ty1; ++ty) {
     std::array<int64_t, 3> e = rowStart;
@@ -52,7 +54,13 @@ void TileBins::addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>&
       if (e[0] + highest[0] < 0 || e[1] + highest[1] < 0 || e[2] + highest[2] < 0) {
         ++stats.tilesTriviallyRejected;
       } else {
-        out.push_back({uint32_t(ty * tilesX_ + tx), triangle});
+        // Inside: every edge non-negative over the tile's samples, and the tile within the
+        // bounds (classifyTile's Inside, which coverTile would find for every sample).
+        const bool whole = e[0] + lowest[0] >= 0 && e[1] + lowest[1] >= 0 &&
+                           e[2] + lowest[2] >= 0 && tx * kTileSize >= bounds.x0 &&
+                           (tx + 1) * kTileSize <= bounds.x1 && ty * kTileSize >= bounds.y0 &&
+                           (ty + 1) * kTileSize <= bounds.y1;
+        out.push_back({uint32_t(ty * tilesX_ + tx), whole ? triangle | kWholeTileBit : triangle});
       }
       for (int i = 0; i < 3; ++i) e[i] += stepX[i];
     }

@@ -16,6 +16,10 @@
 
 namespace rast {
 
+// A bin entry is a triangle id (below 2^31) with kWholeTileBit set when the binning corner test
+// found every sample of the tile inside the triangle, so the back end skips its coverage test.
+inline constexpr uint32_t kWholeTileBit = uint32_t{1} << 31;
+
 // Triangle ids grouped by tile. Built from groups of triangles in parallel, then placed by a
 // stable counting sort (tile-major, group-minor), so each bin lists its triangles in submission
 // order whatever the thread count.

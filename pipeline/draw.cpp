@@ -41,9 +41,10 @@ Status validateDraw(const Framebuffer& fb, const PipelineState& state, size_t ve
   if (indices.size() % 3 != 0)
     return Status::error("index count " + std::to_string(indices.size()) +
                          " is not a multiple of 3");
-  // Set-up triangles are named by 17 bits of chunk and 15 of place (front_end.h).
-  if (indices.size() / 3 > (size_t{1} << 29))
-    return Status::error("a draw holds at most 2^29 triangles; split the " +
+  // Set-up triangles are named by 16 bits of chunk and 15 of place (front_end.h); a bin entry's
+  // 32nd bit is a flag (bin.h).
+  if (indices.size() / 3 > (size_t{1} << 28))
+    return Status::error("a draw holds at most 2^28 triangles; split the " +
                          std::to_string(indices.size() / 3) + "-triangle draw");
   for (size_t i = 0; i < indices.size(); ++i)
     if (indices[i] >= vertexCount)

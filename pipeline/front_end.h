@@ -94,8 +94,8 @@ template <int N>
 struct SetupTriangles {
   static constexpr size_t kInputChunk = 4096;
   // Clipping makes at most kMaxClipVertices - 2 = 8 triangles of one, so a chunk holds at most
-  // 8 * 4096 = 2^15 triangles: 15 bits of local index, 17 of chunk (2^29 input triangles, which
-  // validateDraw enforces).
+  // 8 * 4096 = 2^15 triangles: 15 bits of local index, 16 of chunk (2^28 input triangles, which
+  // validateDraw enforces), leaving bin entries a 32nd bit (kWholeTileBit, bin.h).
   static constexpr int kLocalBits = 15;
   static_assert(kInputChunk * (kMaxClipVertices - 2) <= (size_t{1} << kLocalBits));
 

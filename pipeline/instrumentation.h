@@ -82,8 +82,10 @@ struct DrawCapture {
     binEntries.resize(size_t(bins.tileCount()), 0);
     for (int t = 0; t < bins.tileCount(); ++t) binEntries[size_t(t)] += uint32_t(bins.bin(t).size());
     if (zoomTileX < 0 || zoomTileX >= tilesX || zoomTileY < 0 || zoomTileY >= tilesY) return;
-    for (const uint32_t i : bins.bin(zoomTileY * tilesX + zoomTileX))
-      zoomTriangles.push_back({triangles[i].edges, triangles[i].bounds, triangles[i].primitiveId});
+    for (const uint32_t entry : bins.bin(zoomTileY * tilesX + zoomTileX)) {
+      const auto& t = triangles[entry & ~kWholeTileBit];
+      zoomTriangles.push_back({t.edges, t.bounds, t.primitiveId});
+    }
   }
 };
 

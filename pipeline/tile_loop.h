@@ -393,31 +393,41 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
                         (cfg.depthWrite || cfg.colorWrite);
 
   for (size_t b = 0; b < bin.size(); ++b) {
-    const SetupTriangle<N>& t = triangles[bin[b]];
+    const uint32_t id = bin[b] & ~kWholeTileBit;
+    const SetupTriangle<N>& t = triangles[id];
     // Bins list triangles in submission order, scattered in memory; fetching the next one's
     // cache lines while this one is worked on hides most of the miss (measured on W1).
     if (b + 2 < bin.size()) {
-      const char* next = reinterpret_cast<const char*>(&triangles[bin[b + 2]]);
+      const char* next = reinterpret_cast<const char*>(&triangles[bin[b + 2] & ~kWholeTileBit]);
       for (size_t line = 0; line < sizeof(SetupTriangle<N>); line += 64)
         __builtin_prefetch(next + line);
     }
     CoverageMask anySample = 0;
     uint64_t covered = 0;
-    for (int s = 0; s < S; ++s) {
-      const TileCoverageResult c =
-          cfg.rasterMode == RasterMode::Float
-              ? coverTileFloat(triangles.floatEdges(bin[b]), t.bounds, tileX, tileY)
-              : coverTile(cfg.kernel, t.edges, t.bounds, tileX, tileY, cfg.format,
-                          cfg.samples.offsetX(s, cfg.format), cfg.samples.offsetY(s, cfg.format));
-      if (s == 0) {
-        // Whole-tile outcomes are counted for sample 0, the only one without MSAA.
-        if (c.kind == TileCoverage::Outside) ++stats.tilesTriviallyRejected;
-        else if (c.kind == TileCoverage::Inside) ++stats.tilesTriviallyAccepted;
-        else ++stats.tilesPartial;
+    if (bin[b] & kWholeTileBit) {
+      // Binning's corner test, with the MSAA reach, found every sample inside: what coverTile
+      // would return for each sample.
+      ++stats.tilesTriviallyAccepted;
+      for (int s = 0; s < S; ++s) mask[s] = kFullMask;
+      anySample = kFullMask;
+      covered = uint64_t(S) * kTileLanes;
+    } else {
+      for (int s = 0; s < S; ++s) {
+        const TileCoverageResult c =
+            cfg.rasterMode == RasterMode::Float
+                ? coverTileFloat(triangles.floatEdges(id), t.bounds, tileX, tileY)
+                : coverTile(cfg.kernel, t.edges, t.bounds, tileX, tileY, cfg.format,
+                            cfg.samples.offsetX(s, cfg.format), cfg.samples.offsetY(s, cfg.format));
+        if (s == 0) {
+          // Whole-tile outcomes are counted for sample 0, the only one without MSAA.
+          if (c.kind == TileCoverage::Outside) ++stats.tilesTriviallyRejected;
+          else if (c.kind == TileCoverage::Inside) ++stats.tilesTriviallyAccepted;
+          else ++stats.tilesPartial;
+        }
+        mask[s] = c.mask;
+        anySample |= c.mask;
+        covered += uint64_t(popcount64(c.mask));
       }
-      mask[s] = c.mask;
-      anySample |= c.mask;
-      covered += uint64_t(popcount64(c.mask));
     }
     if (!anySample) continue;
     stats.samplesCovered += covered;
