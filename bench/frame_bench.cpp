@@ -1,5 +1,6 @@
 // One frame of each standard workload (workloads.h) on our pipeline at 1920x1080, in ms per frame,
 // and the memory-bandwidth floor that W3 cannot beat.
+#include <algorithm>
 #include <cstring>
 #include <string>
 
@@ -7,6 +8,7 @@
 
 #include "bench/frame_counters.h"
 #include "bench/workloads.h"
+#include "pipeline/instrumentation.h"
 
 namespace rast::workloads {
 namespace {
@@ -36,6 +38,10 @@ void runFrames(benchmark::State& state, const Geometry& geometry, RenderFrame re
       return;
     }
   }
+  // Where a frame's time goes, per stage (wall-clock ms per frame, averaged over the timed
+  // frames): which stage keeps a workload from scaling with threads shows here.
+  StageTimings stages;
+  exec.timings = &stages;
   for (auto _ : state) {
     frame = {};
     if (Status s = renderFrame(fb, geometry, frame, exec); !s) {
@@ -47,6 +53,11 @@ void runFrames(benchmark::State& state, const Geometry& geometry, RenderFrame re
   }
   bench::reportFrameCounts(state, {frame.inputTriangles, frame.samplesCovered,
                                    frame.depthTestsPassed, frame.pixelShaderInvocations});
+  const double msPerFrame = 1e3 / double(std::max<benchmark::IterationCount>(state.iterations(), 1));
+  state.counters["vertex_ms"] = stages.vertex * msPerFrame;
+  state.counters["setup_ms"] = stages.clipSetup * msPerFrame;
+  state.counters["bin_ms"] = stages.bin * msPerFrame;
+  state.counters["back_end_ms"] = stages.backEnd * msPerFrame;
 }
 
 void litMeshFrames(benchmark::State& state,

@@ -5,16 +5,16 @@
 namespace rast {
 namespace {
 
-int64_t floorDiv(int64_t n, int64_t d) { return n >= 0 ? n / d : -((-n + d - 1) / d); }
-
-// First pixel p whose centre p*S + S/2 is >= lo, and last whose centre is <= hi.
+// First pixel p whose centre p*S + S/2 is >= lo, and last whose centre is <= hi, S = 2^F: the
+// floor of a quotient by a power of two is an arithmetic right shift (C++20 defines it for
+// negative values), where a division would cost four 64-bit divides per triangle.
 int firstPixelAtOrAfter(int64_t lo, FixedPointFormat f) {
   const int64_t s = f.subpixelsPerPixel();
-  return int(floorDiv(lo - s / 2 + s - 1, s));
+  return int((lo - s / 2 + s - 1) >> f.fractionBits);
 }
 int lastPixelAtOrBefore(int64_t hi, FixedPointFormat f) {
   const int64_t s = f.subpixelsPerPixel();
-  return int(floorDiv(hi - s / 2, s));
+  return int((hi - s / 2) >> f.fractionBits);
 }
 
 }  // namespace
