@@ -19,7 +19,7 @@ std::string bunnyPath() { return std::string(RASTER_SHARED_MESHES) + "/bunny.obj
 // counters.
 template <class Geometry, class RenderFrame>
 void runFrames(benchmark::State& state, const Geometry& geometry, RenderFrame renderFrame,
-               int samples = 1) {
+               int samples = 1, BackEndTarget target = BackEndTarget::Auto) {
   Framebuffer fb(kFrameWidth, kFrameHeight, false, samples);
   PipelineStatistics frame;
   // Draws reuse their temporaries' memory from frame to frame, as an application rendering
@@ -28,6 +28,7 @@ void runFrames(benchmark::State& state, const Geometry& geometry, RenderFrame re
   ExecutionOptions exec;
   exec.threads = int(state.range(1));
   exec.memory = &memory;
+  exec.backEnd = target;
   // Two untimed frames first, as the peer renders one before timing: the first frame of a
   // process pays for fresh pages (several times a warm frame's cost for W2's 2M triangles), and
   // a benchmark that runs a single timed iteration would report only that.
@@ -60,6 +61,12 @@ void runFrames(benchmark::State& state, const Geometry& geometry, RenderFrame re
   state.counters["back_end_ms"] = stages.backEnd * msPerFrame;
 }
 
+// W1, W3 and W4's first argument: 0 runs the back end on the best target the CPU has, 1 on the
+// x86-64 baseline.
+BackEndTarget targetArgument(const benchmark::State& state) {
+  return state.range(0) == 1 ? BackEndTarget::Baseline : BackEndTarget::Auto;
+}
+
 void litMeshFrames(benchmark::State& state,
                    Status (*renderFrame)(Framebuffer&, const LitMeshScene&, PipelineStatistics&,
                                          const ExecutionOptions&)) {
@@ -68,7 +75,7 @@ void litMeshFrames(benchmark::State& state,
     state.SkipWithError(s.message().c_str());
     return;
   }
-  runFrames(state, scene, renderFrame);
+  runFrames(state, scene, renderFrame, 1, targetArgument(state));
 }
 
 void BM_FrameW1(benchmark::State& state) { litMeshFrames(state, renderW1Frame); }
@@ -81,7 +88,8 @@ void BM_FrameW2Tiny(benchmark::State& state) {
 
 template <LayerOrder kOrder, LayerShape kShape>
 void BM_FrameW3(benchmark::State& state) {
-  runFrames(state, overdrawLayers(kFrameWidth, kFrameHeight, kOrder, kShape), renderW3Frame);
+  runFrames(state, overdrawLayers(kFrameWidth, kFrameHeight, kOrder, kShape), renderW3Frame, 1,
+            targetArgument(state));
 }
 
 void BM_FrameW4(benchmark::State& state) { litMeshFrames(state, renderW4Frame); }
@@ -107,7 +115,7 @@ Status renderW3BlendedFrame(Framebuffer& fb, const WindowGeometry& layers,
 
 void BM_FrameW3BackToFrontBlended(benchmark::State& state) {
   runFrames(state, overdrawLayers(kFrameWidth, kFrameHeight, LayerOrder::BackToFront, LayerShape::Quad),
-            renderW3BlendedFrame);
+            renderW3BlendedFrame, 1, targetArgument(state));
 }
 
 // One write of W3's framebuffer bytes (RGBA8 colour and 32-bit depth): what any renderer that
@@ -124,10 +132,12 @@ void BM_FrameMemsetFloor(benchmark::State& state) {
   state.SetBytesProcessed(int64_t(state.iterations()) * kFrameWidth * kFrameHeight * 8);
 }
 
-// Every frame benchmark at 1 and 2 threads (the second argument), the peer's settings.
+// Every frame benchmark at 1 and 2 threads (the second argument), the peer's settings; the
+// first argument 0 runs the back end on the best target the CPU has, 1 on the x86-64 baseline.
 void withThreads(benchmark::internal::Benchmark* b) {
   b->ArgNames({"", "threads"});
-  for (int threads : {1, 2}) b->Args({0, threads});
+  for (int target : {0, 1})
+    for (int threads : {1, 2}) b->Args({target, threads});
 }
 
 #define FRAME_BENCHMARK(...) \

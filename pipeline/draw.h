@@ -68,7 +68,7 @@ Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>&
     if (exec.capture) exec.capture->record(bins, triangles);
     clock.lap(&StageTimings::bin);
 
-    runBackEnd(fb, state, bins, triangles, call.pixelShader, exec.coverage, local);
+    runBackEnd(fb, state, bins, triangles, call.pixelShader, exec, local);
     clock.lap(&StageTimings::backEnd);
   });
   stats += local;

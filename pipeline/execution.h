@@ -17,9 +17,17 @@ namespace rast {
 struct StageTimings;
 struct DrawCapture;
 
+// The instruction set the back end's tile loop runs in. One source is compiled for both (every
+// helper inlined into each), so the choice changes no bit, only the speed.
+enum class BackEndTarget {
+  Auto,      // AVX2 (with BMI1/2, LZCNT, POPCNT) where the CPU has it, else the baseline
+  Baseline,  // the x86-64 baseline (SSE2) build
+};
+
 struct ExecutionOptions {
   int threads = 0;  // worker threads for a draw; 0: every hardware thread
   CoverageKernel coverage = bestCoverageKernel();
+  BackEndTarget backEnd = BackEndTarget::Auto;
   // Memory kept between draws (scratch_memory.h); null: each draw allocates its own. The same
   // object may serve any number of draws, one after another or at once.
   ScratchMemory* memory = nullptr;

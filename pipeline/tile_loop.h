@@ -31,6 +31,10 @@
 
 namespace rast {
 
+// The back end's helpers are forced inline so that they are compiled as part of the tile loop
+// that calls them, once for the baseline target and once for AVX2 (rasterizeTilesAvx2 below).
+#define RAST_TILE_INLINE [[gnu::always_inline]] inline
+
 inline constexpr int kTileLanes = kTileSize * kTileSize;
 
 template <class T>
@@ -105,7 +109,7 @@ inline bool allPass(CompareOp op, float triMin, float triMax, const TileDepthBou
 // Eight bytes of 0 or 1 (lane j in byte j) to eight mask bits (lane j in bit j): the multiply
 // gathers byte j's bit into bit 56 + j; no partial sum reaches the next byte (the largest, at
 // byte 6, is 2 + 4 + ... + 128 = 254).
-inline uint64_t packLaneBytes(const uint8_t* lanes) {
+RAST_TILE_INLINE uint64_t packLaneBytes(const uint8_t* lanes) {
   CoverageMask mask = 0;
   for (int row = 0; row < kTileSize; ++row) {
     uint64_t bytes;
@@ -121,12 +125,30 @@ using DepthTestFn = CoverageMask (*)(const TileLanes<float>& z, const TileLanes<
                                      CoverageMask mask, int rowBegin, int rowEnd);
 
 template <CompareOp Op>
-CoverageMask depthTestLanes(const TileLanes<float>& z, const TileLanes<float>& stored,
+RAST_TILE_INLINE CoverageMask depthTestLanes(const TileLanes<float>& z, const TileLanes<float>& stored,
                             CoverageMask mask, int rowBegin, int rowEnd) {
   alignas(64) uint8_t pass[kTileLanes] = {};
   for (int i = rowBegin * kTileSize; i < rowEnd * kTileSize; ++i)
     pass[i] = depthPasses<Op>(z[i], stored[i]) ? 1 : 0;
   return packLaneBytes(pass) & mask;
+}
+
+// The same tests by a switch, so that the tile loop inlines them (and compiles them for its target).
+RAST_TILE_INLINE CoverageMask depthTestInline(CompareOp op, const TileLanes<float>& z,
+                                              const TileLanes<float>& stored, CoverageMask mask,
+                                              int rowBegin, int rowEnd) {
+  using enum CompareOp;
+  switch (op) {
+    case Never: return depthTestLanes<Never>(z, stored, mask, rowBegin, rowEnd);
+    case Less: return depthTestLanes<Less>(z, stored, mask, rowBegin, rowEnd);
+    case Equal: return depthTestLanes<Equal>(z, stored, mask, rowBegin, rowEnd);
+    case LessEqual: return depthTestLanes<LessEqual>(z, stored, mask, rowBegin, rowEnd);
+    case Greater: return depthTestLanes<Greater>(z, stored, mask, rowBegin, rowEnd);
+    case NotEqual: return depthTestLanes<NotEqual>(z, stored, mask, rowBegin, rowEnd);
+    case GreaterEqual: return depthTestLanes<GreaterEqual>(z, stored, mask, rowBegin, rowEnd);
+    case Always: return mask;
+  }
+  return mask;
 }
 
 inline DepthTestFn depthTestFor(CompareOp op) {
@@ -170,7 +192,7 @@ struct BackEndConfig {
 // Depth of the triangle at 64 lanes of sample s: the same expression, in the same order, as
 // interpolateDepth, so the per-sample and per-pixel paths agree bit for bit.
 template <int N>
-void depthLanes(const SetupTriangle<N>& t, int x0, int y0, float offsetX, float offsetY,
+RAST_TILE_INLINE void depthLanes(const SetupTriangle<N>& t, int x0, int y0, float offsetX, float offsetY,
                 int rowBegin, int rowEnd, TileLanes<float>& z) {
   const float dx0 = float(x0 - t.bounds.x0) + offsetX, dy0 = float(y0 - t.bounds.y0) + offsetY;
   for (int ly = rowBegin; ly < rowEnd; ++ly)
@@ -199,7 +221,7 @@ constexpr bool kShadesPerTriangle = requires { requires PS::kPerTriangle; };
 
 // RGBA8 of the lanes of `lanes` (packColor): lane by lane, since shaded triangles are mostly small
 // (W1: a few pixels per row), and GCC does not vectorise the clamp's float compares.
-inline void packLanes(const ShadedColors& c, CoverageMask lanes, TileLanes<PackedColor>& out) {
+RAST_TILE_INLINE void packLanes(const ShadedColors& c, CoverageMask lanes, TileLanes<PackedColor>& out) {
   for (CoverageMask m = lanes; m; m &= m - 1) {
     const int i = std::countr_zero(m);
     out[i] = packColor(c.at(i));
@@ -209,7 +231,7 @@ inline void packLanes(const ShadedColors& c, CoverageMask lanes, TileLanes<Packe
 // Runs the pixel shader on the pixels of `pixels` and stores their colours in `out`; returns the
 // pixels that were not discarded.
 template <PixelShader PS, int N>
-CoverageMask shadePixels(const SetupTriangle<N>& t, int x0, int y0, CoverageMask pixels,
+RAST_TILE_INLINE CoverageMask shadePixels(const SetupTriangle<N>& t, int x0, int y0, CoverageMask pixels,
                          const PS& shader, ShadedColors& out, PipelineStatistics& stats) {
   CoverageMask kept = pixels;
   auto shadeOne = [&](int bit, Fragment<N>& fragment) {
@@ -277,7 +299,7 @@ CoverageMask shadePixels(const SetupTriangle<N>& t, int x0, int y0, CoverageMask
 // to[i] = from[i] for the lanes i of `mask`; lane by lane over the set bits (triangles are mostly
 // small; a row-by-row version measured slower on W1 and W4).
 template <class T>
-void copyLanesWhere(CoverageMask mask, const TileLanes<T>& from, TileLanes<T>& to) {
+RAST_TILE_INLINE void copyLanesWhere(CoverageMask mask, const TileLanes<T>& from, TileLanes<T>& to) {
   if (mask == kFullMask) {
     to = from;
     return;
@@ -289,7 +311,7 @@ void copyLanesWhere(CoverageMask mask, const TileLanes<T>& from, TileLanes<T>& t
 }
 
 template <class T>
-void fillLanesWhere(CoverageMask mask, T value, TileLanes<T>& to) {
+RAST_TILE_INLINE void fillLanesWhere(CoverageMask mask, T value, TileLanes<T>& to) {
   if (mask == kFullMask) {
     to.fill(value);
     return;
@@ -299,7 +321,7 @@ void fillLanesWhere(CoverageMask mask, T value, TileLanes<T>& to) {
 
 // One tile: its framebuffer values in, every binned triangle in order, the values out.
 template <PixelShader PS, int N>
-void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
+RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
                    const SetupTriangles<N>& triangles, const PS& shader,
                    const BackEndConfig& cfg, TileBuffer& tile, PipelineStatistics& stats) {
   if (bin.empty()) return;
@@ -516,7 +538,7 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
       uint64_t passed = 0;
       anySample = 0;
       for (int s = 0; s < S; ++s) {
-        mask[s] = cfg.depthTest(z[s], tile.depth[s], mask[s], rowBegin, rowEnd);
+        mask[s] = depthTestInline(cfg.compare, z[s], tile.depth[s], mask[s], rowBegin, rowEnd);
         anySample |= mask[s];
         passed += uint64_t(popcount64(mask[s]));
       }
@@ -620,16 +642,44 @@ void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
   if (countsDirty) store(target.counts, tile.counts);
 }
 
+// Tiles [begin, end) in order, for the baseline x86-64 target and for AVX2 (with BMI, LZCNT and
+// POPCNT: the mask arithmetic gets its instructions). The two are the same source with every
+// helper inlined, so the same operations in the same order: -ffp-contract=off keeps FMA out of
+// the AVX2 one, and every float operation here is IEEE-exact on both, so their bits are equal
+// (tests/tile_shortcuts_test.cpp compares them).
+template <PixelShader PS, int N>
+void rasterizeTiles(int begin, int end, const TileBins& bins, const SetupTriangles<N>& triangles,
+                    const PS& shader, const BackEndConfig& cfg, TileBuffer& buffer,
+                    PipelineStatistics& stats) {
+  for (int tile = begin; tile != end; ++tile)
+    rasterizeTile<PS, N>(tile % bins.tilesX(), tile / bins.tilesX(), bins.bin(tile), triangles,
+                         shader, cfg, buffer, stats);
+}
+
+template <PixelShader PS, int N>
+[[gnu::target("avx2,bmi,bmi2,lzcnt,popcnt")]] void rasterizeTilesAvx2(
+    int begin, int end, const TileBins& bins, const SetupTriangles<N>& triangles,
+    const PS& shader, const BackEndConfig& cfg, TileBuffer& buffer, PipelineStatistics& stats) {
+  for (int tile = begin; tile != end; ++tile)
+    rasterizeTile<PS, N>(tile % bins.tilesX(), tile / bins.tilesX(), bins.bin(tile), triangles,
+                         shader, cfg, buffer, stats);
+}
+
+inline bool cpuHasAvx2BackEnd() {
+  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") &&
+         __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("popcnt");
+}
+
 // Runs every tile. Tiles run in parallel: each pixel belongs to one tile, and one task owns a
 // tile, so no two tasks touch the same pixel, and within a tile triangles merge in submission
 // order; statistics are sums, the same in any order.
 template <PixelShader PS, int N = PS::kVaryings>
 void runBackEnd(Framebuffer& fb, const PipelineState& state, const TileBins& bins,
                 const SetupTriangles<N>& triangles, const PS& shader,
-                const CoverageKernel& kernel, PipelineStatistics& stats) {
+                const ExecutionOptions& exec, PipelineStatistics& stats) {
   BackEndConfig cfg;
   cfg.format = state.format;
-  cfg.kernel = kernel;
+  cfg.kernel = exec.coverage;
   cfg.samples = SamplePattern::forCount(fb.samples());
   cfg.compare = state.depth.compare;
   cfg.depthTest = depthTestFor(state.depth.compare);
@@ -657,13 +707,17 @@ void runBackEnd(Framebuffer& fb, const PipelineState& state, const TileBins& bin
   cfg.height = fb.height();
 
   tbb::combinable<PipelineStatistics> perTask;
+  const bool avx2 = exec.backEnd == BackEndTarget::Auto && cpuHasAvx2BackEnd();
   tbb::parallel_for(tbb::blocked_range<int>(0, bins.tileCount(), 8),
                     [&](const tbb::blocked_range<int>& tiles) {
     PipelineStatistics& local = perTask.local();
     TileBuffer buffer;
-    for (int tile = tiles.begin(); tile != tiles.end(); ++tile)
-      rasterizeTile<PS, N>(tile % bins.tilesX(), tile / bins.tilesX(), bins.bin(tile), triangles,
-                           shader, cfg, buffer, local);
+    if (avx2)
+      rasterizeTilesAvx2<PS, N>(tiles.begin(), tiles.end(), bins, triangles, shader, cfg, buffer,
+                                local);
+    else
+      rasterizeTiles<PS, N>(tiles.begin(), tiles.end(), bins, triangles, shader, cfg, buffer,
+                            local);
   });
   perTask.combine_each([&](const PipelineStatistics& s) { stats += s; });
 }

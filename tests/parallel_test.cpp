@@ -1,5 +1,5 @@
 // Outputs do not depend on how a draw runs: colour, depth, count images and statistics are bit
-// identical for 1, 2 and 4 threads and for every coverage kernel.
+// identical for 1, 2 and 4 threads, for every coverage kernel and for both back-end targets.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -131,6 +131,21 @@ TEST(ParallelExecution, MultisampledBlendedBunnyIdenticalForThreadsAndKernels) {
     exec.coverage = kernel;
     expectIdentical(expected, renderBunny(mesh, exec, true), kernel.name);
   }
+}
+
+// The tile loop compiled for the x86-64 baseline and for AVX2 (BackEndTarget): the same bits.
+TEST(ParallelExecution, BaselineAndAvx2BackEndsIdentical) {
+  if (!cpuHasAvx2BackEnd()) GTEST_SKIP() << "this CPU runs only the baseline back end";
+  Mesh mesh;
+  ASSERT_TRUE(loadObj(std::string(RASTER_SHARED_MESHES) + "/bunny.obj", mesh));
+  ExecutionOptions baseline;
+  baseline.backEnd = BackEndTarget::Baseline;
+  for (const bool msaaAndBlend : {false, true})
+    expectIdentical(renderBunny(mesh, baseline, msaaAndBlend), renderBunny(mesh, {}, msaaAndBlend),
+                    msaaAndBlend ? "bunny, 8 samples, blended" : "bunny");
+  for (const bool frontToBack : {true, false})
+    expectIdentical(renderLayers(frontToBack, baseline), renderLayers(frontToBack, {}),
+                    frontToBack ? "layers front to back" : "layers back to front");
 }
 
 TEST(ParallelExecution, BunnyIdenticalForEveryCoverageKernel) {

@@ -78,6 +78,10 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
                  "Coverage kernel: auto, scalar, or a SIMD target from --list-kernels; outputs are "
                  "identical for any");
   app.add_flag("--list-kernels", o.listKernels, "Print the coverage kernels this machine runs");
+  app.add_option("--back-end", o.backEnd,
+                 "Instruction set of the tile loop: auto (AVX2 where the CPU has it) or baseline "
+                 "(x86-64 SSE2); outputs are identical for either")
+      ->check(CLI::IsMember({"auto", "baseline"}));
   app.add_option("--shading", o.shading,
                  "lambert, normals, depth, triangle-id, constant or blinn-phong (shadow-mapped) "
                  "(default: lambert for meshes, constant for triangle lists, the scene file's "

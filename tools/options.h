@@ -18,6 +18,7 @@ struct Options {
   bool noDepthWrite = false;
   int threads = 0;
   std::string coverageKernel = "auto";
+  std::string backEnd = "auto";
   bool listKernels = false;
   std::string output, depthOutput, countOutput, statsOutput;
   std::vector<float> eye, target;

@@ -286,6 +286,7 @@ int run(const Options& o) {
   ExecutionOptions exec;
   exec.threads = o.threads;
   exec.memory = &memory;
+  exec.backEnd = o.backEnd == "baseline" ? BackEndTarget::Baseline : BackEndTarget::Auto;
   if (!findCoverageKernel(o.coverageKernel, exec.coverage))
     return fail("coverage kernel '" + o.coverageKernel +
                 "' is not available on this machine (see --list-kernels)");
