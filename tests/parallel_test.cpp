@@ -13,6 +13,7 @@
 #include "shaders_cpp/lambert.h"
 #include "shaders_cpp/transform.h"
 #include "shaders_cpp/window_space.h"
+#include "tests/window_draw.h"
 
 namespace rast {
 namespace {
@@ -73,21 +74,9 @@ Frame renderLayers(bool frontToBack, const ExecutionOptions& exec) {
       vertices.push_back({glm::vec3(p, z)});
     for (uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) indices.push_back(base + k);
   }
-  Framebuffer fb(kW, kH, true);
-  fb.clear(glm::vec4(0, 0, 0, 1), 1.0f);
-  PipelineState state;
-  state.viewport = {0, 0, kW, kH};
-  state.positionSpace = PositionSpace::Window;
-  const WindowSpaceVertexShader vs;
-  const ConstantColorShader ps{glm::vec4(0.2f, 0.4f, 0.6f, 1.0f)};
-  Frame f;
-  EXPECT_TRUE(draw(fb, state,
-                   DrawCall<WindowSpaceVertexShader, ConstantColorShader>{vertices, indices, vs, ps},
-                   f.stats, exec));
-  f.color = fb.colorPlane();
-  f.depth = fb.depthPlane();
-  f.counts = fb.countPlane();
-  return f;
+  const testing_support::DrawnFrame d = testing_support::drawWindowTriangles(
+      kW, kH, vertices, indices, glm::vec4(0.2f, 0.4f, 0.6f, 1.0f), exec, true);
+  return {d.color, d.depth, d.counts, d.stats};
 }
 
 ExecutionOptions withThreads(int threads) {

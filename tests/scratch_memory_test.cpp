@@ -6,9 +6,7 @@
 
 #include <glm/vec2.hpp>
 
-#include "pipeline/draw.h"
-#include "shaders_cpp/constant_color.h"
-#include "shaders_cpp/window_space.h"
+#include "tests/window_draw.h"
 
 namespace rast {
 namespace {
@@ -31,14 +29,10 @@ TEST(ScratchMemory, SizeClassesReuseBlocksAndReleaseFreesThem) {
   EXPECT_EQ(memory.keptBytes(), 0u);
 }
 
-struct Frame {
-  std::vector<PackedColor> color;
-  std::vector<float> depth;
-  PipelineStatistics stats;
-};
+using testing_support::DrawnFrame;
 
 // A W2-style grid of small triangles (many set-up chunks and bin entries), 640x360.
-Frame drawGrid(ScratchMemory* memory, float z) {
+DrawnFrame drawGrid(ScratchMemory* memory, float z) {
   constexpr int kW = 640, kH = 360, kCell = 4;
   std::vector<WindowVertex> vertices;
   std::vector<uint32_t> indices;
@@ -51,38 +45,26 @@ Frame drawGrid(ScratchMemory* memory, float z) {
       const uint32_t a = uint32_t(j * cols + i), b = a + 1, c = a + uint32_t(cols), d = c + 1;
       for (uint32_t v : {a, b, d, a, d, c}) indices.push_back(v);
     }
-  Framebuffer fb(kW, kH);
-  fb.clear(glm::vec4(0, 0, 0, 1), 1.0f);
-  PipelineState state;
-  state.viewport = {0, 0, kW, kH};
-  state.positionSpace = PositionSpace::Window;
   ExecutionOptions exec;
   exec.memory = memory;
-  const WindowSpaceVertexShader vs;
-  const ConstantColorShader ps{glm::vec4(0.25f, 0.5f, 0.75f, 1.0f)};
-  Frame f;
-  EXPECT_TRUE(draw(fb, state,
-                   DrawCall<WindowSpaceVertexShader, ConstantColorShader>{vertices, indices, vs, ps},
-                   f.stats, exec));
-  f.color = fb.colorPlane();
-  f.depth = fb.depthPlane();
-  return f;
+  return testing_support::drawWindowTriangles(kW, kH, vertices, indices,
+                                              glm::vec4(0.25f, 0.5f, 0.75f, 1.0f), exec);
 }
 
 TEST(ScratchMemory, DrawsKeepTheirBlocksForTheNextDrawAndDrawTheSame) {
-  const Frame plain = drawGrid(nullptr, 0.5f);
+  const DrawnFrame plain = drawGrid(nullptr, 0.5f);
   EXPECT_EQ(plain.stats.fragmentsWritten, 640u * 360);
 
   ScratchMemory memory;
-  const Frame first = drawGrid(&memory, 0.5f);
+  const DrawnFrame first = drawGrid(&memory, 0.5f);
   const size_t kept = memory.keptBytes();
   // The set-up triangles alone: 28,800 of them, 88 bytes each.
   EXPECT_GT(kept, size_t{28800} * 88);
   // The same draw again takes every block it needs from the kept ones and gives them back.
-  const Frame second = drawGrid(&memory, 0.5f);
+  const DrawnFrame second = drawGrid(&memory, 0.5f);
   EXPECT_EQ(memory.keptBytes(), kept);
 
-  for (const Frame* f : {&first, &second}) {
+  for (const DrawnFrame* f : {&first, &second}) {
     EXPECT_TRUE(f->color == plain.color);
     EXPECT_EQ(std::memcmp(f->depth.data(), plain.depth.data(), plain.depth.size() * sizeof(float)), 0);
     EXPECT_EQ(f->stats, plain.stats);
