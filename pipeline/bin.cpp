@@ -13,11 +13,15 @@ TileBins::TileBins(int widthPixels, int heightPixels, ScratchMemory* memory)
 
 void TileBins::addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
                            const FloatEdges* floatEdges, const PixelRect& bounds,
-                           FixedPointFormat format, int32_t sampleReach,
-                           ScratchVector<Entry>& out, PipelineStatistics& stats) const {
+                           FixedPointFormat format, int32_t sampleReach, int firstRow,
+                           int endRow, ScratchVector<Entry>& out,
+                           PipelineStatistics& stats) const {
   const int tx0 = bounds.x0 >> kTileShift, tx1 = (bounds.x1 - 1) >> kTileShift;
-  const int ty0 = bounds.y0 >> kTileShift, ty1 = (bounds.y1 - 1) >> kTileShift;
-  if (tx0 == tx1 && ty0 == ty1) {
+  const int boundsTy0 = bounds.y0 >> kTileShift, boundsTy1 = (bounds.y1 - 1) >> kTileShift;
+  // The triangle's tile rows within the band; corner values start from the band's first row.
+  const int ty0 = std::max(boundsTy0, firstRow), ty1 = std::min(boundsTy1, endRow - 1);
+  if (ty0 > ty1) return;
+  if (tx0 == tx1 && boundsTy0 == boundsTy1) {
     // A one-tile triangle is not tested here: its bounds already say it touches the tile.
     out.push_back({uint32_t(ty0 * tilesX_ + tx0), triangle});
     return;
