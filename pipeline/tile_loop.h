@@ -121,8 +121,6 @@ RAST_TILE_INLINE uint64_t packLaneBytes(const uint8_t* lanes) {
 
 // The depth test of 64 lanes, specialised on the compare op; returns the lanes of `mask` that pass.
 // Only rows [rowBegin, rowEnd) are read: the rows `mask` touches.
-using DepthTestFn = CoverageMask (*)(const TileLanes<float>& z, const TileLanes<float>& stored,
-                                     CoverageMask mask, int rowBegin, int rowEnd);
 
 template <CompareOp Op>
 RAST_TILE_INLINE CoverageMask depthTestLanes(const TileLanes<float>& z, const TileLanes<float>& stored,
@@ -151,28 +149,12 @@ RAST_TILE_INLINE CoverageMask depthTestInline(CompareOp op, const TileLanes<floa
   return mask;
 }
 
-inline DepthTestFn depthTestFor(CompareOp op) {
-  using enum CompareOp;
-  switch (op) {
-    case Never: return &depthTestLanes<Never>;
-    case Less: return &depthTestLanes<Less>;
-    case Equal: return &depthTestLanes<Equal>;
-    case LessEqual: return &depthTestLanes<LessEqual>;
-    case Greater: return &depthTestLanes<Greater>;
-    case NotEqual: return &depthTestLanes<NotEqual>;
-    case GreaterEqual: return &depthTestLanes<GreaterEqual>;
-    case Always: return nullptr;
-  }
-  return nullptr;
-}
-
 // What the back end does, fixed for the whole draw.
 struct BackEndConfig {
   FixedPointFormat format;
   CoverageKernel kernel;
   SamplePattern samples;
-  CompareOp compare = CompareOp::Always;
-  DepthTestFn depthTest = nullptr;  // null: no test (compare Always)
+  CompareOp compare = CompareOp::Always;  // Always: no test
   bool depthWrite = false;
   bool colorWrite = false;
   bool earlyDepth = true;
@@ -218,6 +200,21 @@ constexpr bool kTakesDerivatives = requires { requires PS::kDerivatives; };
 // pixel, the work the pipeline stands for, so that no counter depends on this shortcut.
 template <class PS>
 constexpr bool kShadesPerTriangle = requires { requires PS::kPerTriangle; };
+
+// A kShadesPerTriangle shader's one run for a triangle in a tile, at pixel `bit` of the tile.
+template <PixelShader PS, int N>
+RAST_TILE_INLINE PixelResult shadeOncePerTriangle(const SetupTriangle<N>& t, int x0, int y0,
+                                                  int bit, const PS& shader) {
+  static_assert(N == 0, "a shader run once per triangle reads no varyings");
+  Fragment<N> fragment;
+  fragment.x = x0 + bit % kTileSize;
+  fragment.y = y0 + bit / kTileSize;
+  fragment.depth = interpolateDepth(t, float(fragment.x - t.bounds.x0),
+                                    float(fragment.y - t.bounds.y0));
+  fragment.frontFacing = t.frontFacing;
+  fragment.primitiveId = t.primitiveId;
+  return shader(fragment);
+}
 
 // RGBA8 of the lanes of `lanes` (packColor): lane by lane, since shaded triangles are mostly small
 // (W1: a few pixels per row), and GCC does not vectorise the clamp's float compares.
@@ -329,7 +326,7 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
   const int x0 = tileX * kTileSize, y0 = tileY * kTileSize;
   const int cols = std::min(kTileSize, cfg.width - x0), rows = std::min(kTileSize, cfg.height - y0);
   const size_t planeSize = size_t(cfg.width) * size_t(cfg.height);
-  const bool depthRead = cfg.depthTest != nullptr;
+  const bool depthRead = cfg.compare != CompareOp::Always;
   const bool depthUsed = depthRead || cfg.depthWrite;
   const bool counting = cfg.target.counts != nullptr;
   const MergeTarget& target = cfg.target;
@@ -500,13 +497,7 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
       if constexpr (kShadesPerTriangle<PS>) {
         if (cfg.colorWrite) {
           // Run once, at the tile's first pixel, as the per-triangle path below does.
-          Fragment<N> fragment;
-          fragment.x = x0;
-          fragment.y = y0;
-          fragment.depth = interpolateDepth(t, float(x0 - t.bounds.x0), float(y0 - t.bounds.y0));
-          fragment.frontFacing = t.frontFacing;
-          fragment.primitiveId = t.primitiveId;
-          pendingColorValue = packColor(shader(fragment).color);
+          pendingColorValue = packColor(shadeOncePerTriangle(t, x0, y0, 0, shader).color);
           pendingColor = colorDirty = true;
           stats.pixelShaderInvocations += kTileLanes;
         }
@@ -556,16 +547,8 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
     if (shade) {
       CoverageMask kept = anySample;
       if constexpr (kShadesPerTriangle<PS>) {
-        static_assert(N == 0, "a shader run once per triangle reads no varyings");
-        const int bit = std::countr_zero(anySample);
-        Fragment<N> fragment;
-        fragment.x = x0 + bit % kTileSize;
-        fragment.y = y0 + bit / kTileSize;
-        fragment.depth = interpolateDepth(t, float(fragment.x - t.bounds.x0),
-                                          float(fragment.y - t.bounds.y0));
-        fragment.frontFacing = t.frontFacing;
-        fragment.primitiveId = t.primitiveId;
-        const PixelResult result = shader(fragment);
+        const PixelResult result =
+            shadeOncePerTriangle(t, x0, y0, std::countr_zero(anySample), shader);
         stats.pixelShaderInvocations += uint64_t(popcount64(anySample));
         if constexpr (PS::kMayDiscard) {
           if (result.discard) {
@@ -648,21 +631,27 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
 // the AVX2 one, and every float operation here is IEEE-exact on both, so their bits are equal
 // (tests/tile_shortcuts_test.cpp compares them).
 template <PixelShader PS, int N>
-void rasterizeTiles(int begin, int end, const TileBins& bins, const SetupTriangles<N>& triangles,
-                    const PS& shader, const BackEndConfig& cfg, TileBuffer& buffer,
-                    PipelineStatistics& stats) {
+RAST_TILE_INLINE void rasterizeTileRange(int begin, int end, const TileBins& bins,
+                                         const SetupTriangles<N>& triangles, const PS& shader,
+                                         const BackEndConfig& cfg, TileBuffer& buffer,
+                                         PipelineStatistics& stats) {
   for (int tile = begin; tile != end; ++tile)
     rasterizeTile<PS, N>(tile % bins.tilesX(), tile / bins.tilesX(), bins.bin(tile), triangles,
                          shader, cfg, buffer, stats);
 }
 
 template <PixelShader PS, int N>
+void rasterizeTiles(int begin, int end, const TileBins& bins, const SetupTriangles<N>& triangles,
+                    const PS& shader, const BackEndConfig& cfg, TileBuffer& buffer,
+                    PipelineStatistics& stats) {
+  rasterizeTileRange(begin, end, bins, triangles, shader, cfg, buffer, stats);
+}
+
+template <PixelShader PS, int N>
 [[gnu::target("avx2,bmi,bmi2,lzcnt,popcnt")]] void rasterizeTilesAvx2(
     int begin, int end, const TileBins& bins, const SetupTriangles<N>& triangles,
     const PS& shader, const BackEndConfig& cfg, TileBuffer& buffer, PipelineStatistics& stats) {
-  for (int tile = begin; tile != end; ++tile)
-    rasterizeTile<PS, N>(tile % bins.tilesX(), tile / bins.tilesX(), bins.bin(tile), triangles,
-                         shader, cfg, buffer, stats);
+  rasterizeTileRange(begin, end, bins, triangles, shader, cfg, buffer, stats);
 }
 
 inline bool cpuHasAvx2BackEnd() {
@@ -682,7 +671,6 @@ void runBackEnd(Framebuffer& fb, const PipelineState& state, const TileBins& bin
   cfg.kernel = exec.coverage;
   cfg.samples = SamplePattern::forCount(fb.samples());
   cfg.compare = state.depth.compare;
-  cfg.depthTest = depthTestFor(state.depth.compare);
   cfg.depthWrite = state.depth.write;
   cfg.colorWrite = state.colorWrite;
   cfg.earlyDepth = state.depth.early;
