@@ -1,10 +1,8 @@
 #include "scene/mesh.h"
+#include "scene/text_file.h"
 
 #include <charconv>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <limits>
 
 #include <glm/geometric.hpp>
@@ -145,12 +143,8 @@ glm::vec3 Mesh::boundsMax() const {
 Status loadObj(const std::string& path, Mesh& out) {
   // Read here rather than by tinyobjloader, so the text can be checked first (materials are not
   // used, so the .mtl files it would look for next to the file are not needed).
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return Status::error(path + ": is a directory");
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return Status::error(path + ": cannot open file");
-  const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  if (file.bad()) return Status::error(path + ": cannot read file");
+  std::string text;
+  if (Status s = readTextFile(path, text); !s) return s;
   return parseObj(text, path, out);
 }
 

@@ -1,11 +1,10 @@
 #include "scene/scene_file.h"
+#include "scene/text_file.h"
 
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <functional>
-#include <iterator>
 #include <limits>
 #include <utility>
 
@@ -598,12 +597,8 @@ Status parseSceneFile(const std::string& text, const std::string& name, SceneDes
 }
 
 Status loadSceneFile(const std::string& path, SceneDescription& out) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return Status::error(path + ": is a directory");
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return Status::error(path + ": cannot open file");
-  const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  if (file.bad()) return Status::error(path + ": cannot read file");
+  std::string text;
+  if (Status s = readTextFile(path, text); !s) return s;
   return parseSceneFile(text, path, out);
 }
 
