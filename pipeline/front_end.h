@@ -8,35 +8,12 @@
 #include <vector>
 
 #include "pipeline/clip.h"
+#include "pipeline/clip_codes.h"
 #include "pipeline/execution.h"
 #include "pipeline/setup.h"
 #include "pipeline/vertex_stage.h"
 
 namespace rast {
-
-// Per vertex, computed once: finite or not, and which planes it is outside of.
-struct VertexClipCodes {
-  bool finite;
-  unsigned reject;
-  unsigned clip;
-};
-
-template <int N>
-ScratchVector<VertexClipCodes> computeClipCodes(const ScratchVector<ShadedVertex<N>>& vertices,
-                                              const ClipPlanes& planes) {
-  ScratchVector<VertexClipCodes> codes(vertices.size(),
-                                      ScratchAllocator<VertexClipCodes>(vertices.get_allocator()));
-  forEachChunk(vertices.size(), 4096, [&](size_t, size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) {
-      const glm::dvec4 p(vertices[i].position);
-      const bool finite =
-          std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.w);
-      codes[i] = {finite, finite ? outsideMask(planes.reject, p) : 0u,
-                  finite ? outsideMask(planes.clip, p) : 0u};
-    }
-  });
-  return codes;
-}
 
 // Clips and sets up triangles [begin, end) of the draw, appending to `out` in order.
 template <int N>

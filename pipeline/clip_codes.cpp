@@ -1,0 +1,50 @@
+#include "pipeline/clip_codes.h"
+
+#include <algorithm>
+#include <iterator>
+
+namespace rast::detail {
+namespace {
+
+[[gnu::always_inline]] inline void testAxisPlanesBody(const std::vector<AxisPlane>& planes,
+                                                      ClipCodeBlock& block) {
+  std::fill(std::begin(block.outside), std::end(block.outside), 0);
+  std::fill(std::begin(block.unsure), std::end(block.unsure), 0);
+  for (size_t k = 0; k < planes.size(); ++k) {
+    const AxisPlane& plane = planes[k];
+    const double* x = block.p[plane.axis];
+    const double* w = block.p[3];
+    const double a = plane.a, b = plane.b;
+    const uint64_t bits = plane.bits, unsureBit = uint64_t{1} << k;
+    // isOutside's filter (clip.h) without its two zero terms: the sum is within
+    // 2^-52 * (|t0| + |t1|) + 2^-1074 of the exact value, well inside the bound.
+    for (int i = 0; i < kClipCodeBlock; ++i) {
+      const double t0 = a * x[i], t1 = b * w[i];
+      const double d = t0 + t1;
+      const double bound = (std::abs(t0) + std::abs(t1)) * 0x1p-50 + 0x1p-1000;
+      const uint64_t out = d < -bound, in = d > bound;  // both 0 when the bound does not decide
+      block.outside[i] |= bits & (0 - out);
+      block.unsure[i] |= unsureBit & ((out | in) - 1);
+    }
+  }
+}
+
+void testAxisPlanesBaseline(const std::vector<AxisPlane>& planes, ClipCodeBlock& block) {
+  testAxisPlanesBody(planes, block);
+}
+
+[[gnu::target("avx2")]] void testAxisPlanesAvx2(const std::vector<AxisPlane>& planes,
+                                               ClipCodeBlock& block) {
+  testAxisPlanesBody(planes, block);
+}
+
+}  // namespace
+
+bool cpuHasAvx2() { return __builtin_cpu_supports("avx2"); }
+
+void testAxisPlanes(const std::vector<AxisPlane>& planes, ClipCodeBlock& block, bool avx2) {
+  if (avx2) testAxisPlanesAvx2(planes, block);
+  else testAxisPlanesBaseline(planes, block);
+}
+
+}  // namespace rast::detail
