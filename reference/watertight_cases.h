@@ -1,7 +1,7 @@
 // Watertightness cases: random fans and grids of triangles with vertices on the subpixel grid,
 // so that every rasterizer mode sees the same exact geometry, and the exact classification of
-// each sample against their union (strictly inside, on the outline, outside). The generators are
-// those of tests/watertight_test.cpp: the same seed gives the same cases.
+// each sample against their union (strictly inside, on the outline, outside). The watertightness
+// tests (tests/watertight_test.cpp) draw the same generators: the same seed gives the same cases.
 #pragma once
 
 #include <array>

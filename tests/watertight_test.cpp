@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "reference/watertight_cases.h"
 #include "tests/union_reference.h"
 #include "pipeline/draw.h"
 #include "scene/camera.h"
@@ -27,6 +28,17 @@
 
 namespace rast {
 namespace {
+
+// The exact 2D geometry and the fan and grid generators are the reference's
+// (reference/watertight_cases.h), which the precision tools share.
+using reference::inClosedTriangle;
+using reference::Mesh2D;
+using reference::onSegment;
+using reference::orient;
+using reference::outlineEdges;
+using reference::randomFan;
+using reference::randomGrid;
+using reference::SubPoint;
 
 PipelineState countingState(int width, int height, FixedPointFormat format, PositionSpace space) {
   PipelineState s;
@@ -55,33 +67,9 @@ std::vector<uint32_t> drawCounts(const PipelineState& state, int width, int heig
   return fb.countPlane();
 }
 
-// Edges used by exactly one triangle: the outline of the union of a triangle set whose shared
-// edges are shared by exactly two triangles.
-std::vector<std::pair<uint32_t, uint32_t>> outlineEdges(const std::vector<uint32_t>& indices) {
-  std::map<std::pair<uint32_t, uint32_t>, int> uses;
-  for (size_t t = 0; t + 2 < indices.size(); t += 3)
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t a = indices[t + k], b = indices[t + (k + 1) % 3];
-      ++uses[{std::min(a, b), std::max(a, b)}];
-    }
-  std::vector<std::pair<uint32_t, uint32_t>> out;
-  for (const auto& [edge, n] : uses)
-    if (n == 1) out.push_back(edge);
-  return out;
-}
-
 // ---------------------------------------------------------------------------------------------
 // Window space, exact: vertices on the subpixel grid, so the snapped positions are known exactly
 // and the reference is computed in integers with the top-left rule as Direct3D defines it.
-
-struct SubPoint {
-  int64_t x, y;  // subpixels
-};
-
-// Twice the signed area of (a, b, c) with y down: > 0 when they run clockwise on screen.
-int64_t orient(SubPoint a, SubPoint b, SubPoint c) {
-  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-}
 
 // Whether the sample s is covered by the triangle: strictly inside, or exactly on a top edge
 // (horizontal, the triangle below it) or a left edge (not horizontal, the triangle to its right).
@@ -103,27 +91,6 @@ bool coversSample(const std::array<SubPoint, 3>& v, SubPoint s) {
   }
   return true;
 }
-
-// In the closed triangle (edges included).
-bool inClosure(const std::array<SubPoint, 3>& v, SubPoint s) {
-  const int64_t o = orient(v[0], v[1], v[2]);
-  if (o == 0) return false;
-  for (int i = 0; i < 3; ++i) {
-    const int64_t e = orient(v[i], v[(i + 1) % 3], s);
-    if (e != 0 && (e > 0) != (o > 0)) return false;
-  }
-  return true;
-}
-
-bool onSegment(SubPoint a, SubPoint b, SubPoint s) {
-  return orient(a, b, s) == 0 && s.x >= std::min(a.x, b.x) && s.x <= std::max(a.x, b.x) &&
-         s.y >= std::min(a.y, b.y) && s.y <= std::max(a.y, b.y);
-}
-
-struct Mesh2D {
-  std::vector<SubPoint> vertices;
-  std::vector<uint32_t> indices;
-};
 
 // Draws the triangles in window space and checks, sample by sample:
 //   * the count equals the integer reference (sum over triangles of coversSample);
@@ -160,7 +127,7 @@ int expectWatertight(const Mesh2D& m, FixedPointFormat format, int width, int he
       for (int x = x0; x < x1; ++x) {
         const size_t i = size_t(y) * width + x;
         reference[i] += coversSample(v, sample(x, y));
-        inUnion[i] |= inClosure(v, sample(x, y));
+        inUnion[i] |= inClosedTriangle(v, sample(x, y));
       }
   }
   for (const auto& [a, b] : outlineEdges(m.indices)) {
@@ -191,92 +158,6 @@ int expectWatertight(const Mesh2D& m, FixedPointFormat format, int width, int he
   for (uint32_t c : counts) total += c;
   EXPECT_EQ(stats.fragmentsWritten, total) << what;
   return interior;
-}
-
-// A closed fan around a centre vertex: rim points at increasing angles, gaps below pi, so every
-// triangle has the same winding and the union is star-shaped around the centre.
-Mesh2D randomFan(std::mt19937_64& rng, int64_t unit, int width, int height) {
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (;;) {
-    Mesh2D m;
-    const int n = 5 + int(rng() % 12);
-    SubPoint c{int64_t((8 + u(rng) * (width - 16)) * unit),
-               int64_t((8 + u(rng) * (height - 16)) * unit)};
-    if (rng() % 2) c = {c.x / unit * unit + unit / 2, c.y / unit * unit + unit / 2};  // on a sample
-    m.vertices.push_back(c);
-    const double start = u(rng) * 6.283185307179586;
-    for (int k = 0; k < n; ++k) {
-      const double angle = start + (k + 0.8 * (u(rng) - 0.5)) * 6.283185307179586 / n;
-      const double radius = (0.5 + u(rng) * 30.0) * unit;
-      SubPoint p{c.x + std::llround(radius * std::cos(angle)),
-                 c.y + std::llround(radius * std::sin(angle))};
-      switch (rng() % 6) {  // spokes through samples, and axis-aligned spokes
-        case 0:
-          p = {p.x / unit * unit + unit / 2, p.y / unit * unit + unit / 2};
-          break;
-        case 1:
-          p.x = c.x;
-          break;
-        case 2:
-          p.y = c.y;
-          break;
-        default:
-          break;
-      }
-      m.vertices.push_back(p);
-    }
-    bool ok = true;
-    for (int k = 0; k < n; ++k) {
-      const uint32_t a = 1 + k, b = 1 + (k + 1) % n;
-      // Increasing angles with y down run clockwise on screen (orient > 0): one winding for all,
-      // which the axis-aligned and on-sample moves above must not have broken.
-      ok &= orient(m.vertices[0], m.vertices[a], m.vertices[b]) > 0;
-      if (rng() % 2)
-        m.indices.insert(m.indices.end(), {0, a, b});
-      else
-        m.indices.insert(m.indices.end(), {b, a, 0});  // the other winding: same coverage
-    }
-    if (ok) return m;
-  }
-}
-
-// A grid of quadrilaterals, corners jittered by up to 0.2 cells (which keeps every cell convex),
-// each split along a random diagonal, each triangle with a random winding. jitter = false puts
-// every corner on a sample: the most ties.
-Mesh2D randomGrid(std::mt19937_64& rng, int64_t unit, int width, int height, bool jitter,
-                  double cellPixels) {
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  Mesh2D m;
-  // On samples, cells are whole pixels so that no two corners meet.
-  const int64_t cell = jitter ? std::max<int64_t>(3, std::llround(cellPixels * unit))
-                              : std::max<int64_t>(1, std::llround(cellPixels)) * unit;
-  const int nx = std::max<int>(2, std::min<int64_t>(12, (width - 4) * unit / cell));
-  const int ny = std::max<int>(2, std::min<int64_t>(12, (height - 4) * unit / cell));
-  int64_t ox = int64_t(u(rng) * (width * unit - nx * cell)),
-          oy = int64_t(u(rng) * (height * unit - ny * cell));
-  if (!jitter) ox = ox / unit * unit + unit / 2, oy = oy / unit * unit + unit / 2;
-  for (int j = 0; j <= ny; ++j)
-    for (int i = 0; i <= nx; ++i) {
-      SubPoint p{ox + i * cell, oy + j * cell};
-      if (jitter) {
-        p.x += std::llround((u(rng) - 0.5) * 0.4 * cell);
-        p.y += std::llround((u(rng) - 0.5) * 0.4 * cell);
-      }
-      m.vertices.push_back(p);
-    }
-  auto id = [&](int i, int j) { return uint32_t(j * (nx + 1) + i); };
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const uint32_t a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
-      std::array<std::array<uint32_t, 3>, 2> tris =
-          rng() % 2 ? std::array<std::array<uint32_t, 3>, 2>{{{a, b, c}, {a, c, d}}}
-                    : std::array<std::array<uint32_t, 3>, 2>{{{a, b, d}, {b, c, d}}};
-      for (auto& t : tris) {
-        if (rng() % 2) std::swap(t[1], t[2]);
-        m.indices.insert(m.indices.end(), t.begin(), t.end());
-      }
-    }
-  return m;
 }
 
 class WatertightWindow : public ::testing::TestWithParam<FixedPointFormat> {};
