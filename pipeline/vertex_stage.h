@@ -2,6 +2,8 @@
 // cache as large as the vertex buffer, so every repeat of an index is a hit).
 #pragma once
 
+#include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -30,7 +32,36 @@ void runVertexStage(const VS& shader, std::span<const typename VS::Vertex> verti
                     std::span<const uint32_t> indices, TransformedVertices<N>& out,
                     PipelineStatistics& stats) {
   static_assert(N <= VS::kVaryings, "the pixel shader reads more varyings than the vertex shader writes");
-  // Numbering unique indices in order of first use is sequential and cheap; shading is not.
+  auto shade = [&](size_t from, ShadedVertex<N>& kept) {
+    const ShadedVertex<VS::kVaryings> full = shader(vertices[from]);
+    kept.position = full.position;
+    for (int k = 0; k < N; ++k) kept.varyings[k] = full.varyings[k];
+  };
+  // A draw that uses every vertex of its buffer (a mesh, W2's grid) needs no renumbering: the
+  // buffer's order serves, the indices are copied as they are, and every step runs in parallel.
+  // Whether it does is one parallel pass of marks (idempotent stores of 1, atomic so that two
+  // threads marking one vertex do not race).
+  ScratchVector<uint8_t> used(vertices.size(), 0, ScratchAllocator<uint8_t>(out.indices.get_allocator()));
+  forEachChunk(indices.size(), 1 << 16, [&](size_t, size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i)
+      std::atomic_ref<uint8_t>(used[indices[i]]).store(1, std::memory_order_relaxed);
+  });
+  if (std::find(used.begin(), used.end(), uint8_t{0}) == used.end()) {
+    out.indices.resize(indices.size());
+    forEachChunk(indices.size(), 1 << 16, [&](size_t, size_t begin, size_t end) {
+      std::copy(indices.begin() + ptrdiff_t(begin), indices.begin() + ptrdiff_t(end),
+                out.indices.begin() + ptrdiff_t(begin));
+    });
+    out.vertices.resize(vertices.size());
+    forEachChunk(vertices.size(), 4096, [&](size_t, size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) shade(i, out.vertices[i]);
+    });
+    stats.inputIndices += indices.size();
+    stats.vertexShaderInvocations += vertices.size();
+    return;
+  }
+  // Otherwise only the vertices used are shaded, numbered in order of first use: sequential and
+  // cheap; shading is not.
   constexpr uint32_t kNotSeen = ~uint32_t{0};
   ScratchVector<uint32_t> slot(vertices.size(), kNotSeen, out.indices.get_allocator());
   ScratchVector<uint32_t> unique(out.indices.get_allocator());
@@ -45,12 +76,7 @@ void runVertexStage(const VS& shader, std::span<const typename VS::Vertex> verti
   }
   out.vertices.resize(unique.size());
   forEachChunk(unique.size(), 4096, [&](size_t, size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) {
-      const ShadedVertex<VS::kVaryings> full = shader(vertices[unique[i]]);
-      ShadedVertex<N>& kept = out.vertices[i];
-      kept.position = full.position;
-      for (int k = 0; k < N; ++k) kept.varyings[k] = full.varyings[k];
-    }
+    for (size_t i = begin; i < end; ++i) shade(unique[i], out.vertices[i]);
   });
   stats.inputIndices += indices.size();
   stats.vertexShaderInvocations += unique.size();
