@@ -145,8 +145,10 @@ std::string statisticsTable(const FrameRecord& record) {
   rule();
   for (const auto& r : shown.rows) line(r);
   if (all.rows.size() > shown.rows.size())
-    out += "(" + std::to_string(all.rows.size() - shown.rows.size()) +
-           " counters are zero in every column and not shown)\n";
+    // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
+    out.append("(")
+        .append(std::to_string(all.rows.size() - shown.rows.size()))
+        .append(" counters are zero in every column and not shown)\n");
   out += "\n";
   line(times.header);
   rule();

@@ -71,7 +71,7 @@ class EveryPrecision : public ::testing::TestWithParam<int> {
 };
 
 std::string precisionName(const ::testing::TestParamInfo<int>& info) {
-  return "F" + std::to_string(info.param);
+  return std::string("F").append(std::to_string(info.param));  // not "F" + ...: GCC 12 -Wrestrict
 }
 
 // ---------------------------------------------------------------------------------------------
