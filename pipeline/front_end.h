@@ -102,7 +102,7 @@ void clipAndSetupAll(const TransformedVertices<N>& in, const SetupContext& ctx,
   constexpr size_t kChunk = SetupTriangles<N>::kInputChunk;
   const size_t triangleCount = in.indices.size() / 3;
   const size_t chunks = chunkCount(triangleCount, kChunk);
-  const ScratchAllocator<std::byte> memory(in.indices.get_allocator());
+  const ScratchAllocator<std::byte> memory(in.memory);
   out.chunks.resize(chunks, ScratchVector<SetupTriangle<N>>(memory));
   const bool floatMode = ctx.rasterMode == RasterMode::Float;
   out.floatChunks.resize(floatMode ? chunks : 0, ScratchVector<FloatEdges>(memory));

@@ -18,11 +18,17 @@ template <int N>
 struct TransformedVertices {
   // `memory`: where this and everything the front end derives from it is allocated.
   explicit TransformedVertices(ScratchMemory* memory = nullptr)
-      : vertices(ScratchAllocator<ShadedVertex<N>>(memory)),
-        indices(ScratchAllocator<uint32_t>(memory)) {}
+      : memory(memory),
+        vertices(ScratchAllocator<ShadedVertex<N>>(memory)),
+        renumbered(ScratchAllocator<uint32_t>(memory)) {}
 
-  ScratchVector<ShadedVertex<N>> vertices;  // in order of first use
-  ScratchVector<uint32_t> indices;          // the draw's indices, renumbered into `vertices`
+  ScratchMemory* memory;
+  // In the buffer's order when the draw uses every vertex, else in order of first use.
+  ScratchVector<ShadedVertex<N>> vertices;
+  // The draw's indices into `vertices`: the caller's own when the buffer's order serves (they
+  // outlive the draw), else `renumbered`.
+  std::span<const uint32_t> indices;
+  ScratchVector<uint32_t> renumbered;
 };
 
 // Indices must already be validated against vertices.size(). Keeps the first N varyings: the
@@ -38,20 +44,16 @@ void runVertexStage(const VS& shader, std::span<const typename VS::Vertex> verti
     for (int k = 0; k < N; ++k) kept.varyings[k] = full.varyings[k];
   };
   // A draw that uses every vertex of its buffer (a mesh, W2's grid) needs no renumbering: the
-  // buffer's order serves, the indices are copied as they are, and every step runs in parallel.
+  // buffer's order serves, the indices are used as they are, and every step runs in parallel.
   // Whether it does is one parallel pass of marks (idempotent stores of 1, atomic so that two
   // threads marking one vertex do not race).
-  ScratchVector<uint8_t> used(vertices.size(), 0, ScratchAllocator<uint8_t>(out.indices.get_allocator()));
+  ScratchVector<uint8_t> used(vertices.size(), 0, ScratchAllocator<uint8_t>(out.memory));
   forEachChunk(indices.size(), 1 << 16, [&](size_t, size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i)
       std::atomic_ref<uint8_t>(used[indices[i]]).store(1, std::memory_order_relaxed);
   });
   if (std::find(used.begin(), used.end(), uint8_t{0}) == used.end()) {
-    out.indices.resize(indices.size());
-    forEachChunk(indices.size(), 1 << 16, [&](size_t, size_t begin, size_t end) {
-      std::copy(indices.begin() + ptrdiff_t(begin), indices.begin() + ptrdiff_t(end),
-                out.indices.begin() + ptrdiff_t(begin));
-    });
+    out.indices = indices;
     out.vertices.resize(vertices.size());
     forEachChunk(vertices.size(), 4096, [&](size_t, size_t begin, size_t end) {
       for (size_t i = begin; i < end; ++i) shade(i, out.vertices[i]);
@@ -63,17 +65,18 @@ void runVertexStage(const VS& shader, std::span<const typename VS::Vertex> verti
   // Otherwise only the vertices used are shaded, numbered in order of first use: sequential and
   // cheap; shading is not.
   constexpr uint32_t kNotSeen = ~uint32_t{0};
-  ScratchVector<uint32_t> slot(vertices.size(), kNotSeen, out.indices.get_allocator());
-  ScratchVector<uint32_t> unique(out.indices.get_allocator());
-  out.indices.resize(indices.size());
+  ScratchVector<uint32_t> slot(vertices.size(), kNotSeen, ScratchAllocator<uint32_t>(out.memory));
+  ScratchVector<uint32_t> unique(ScratchAllocator<uint32_t>(out.memory));
+  out.renumbered.resize(indices.size());
   for (size_t i = 0; i < indices.size(); ++i) {
     uint32_t& s = slot[indices[i]];
     if (s == kNotSeen) {
       s = uint32_t(unique.size());
       unique.push_back(indices[i]);
     }
-    out.indices[i] = s;
+    out.renumbered[i] = s;
   }
+  out.indices = out.renumbered;
   out.vertices.resize(unique.size());
   forEachChunk(unique.size(), 4096, [&](size_t, size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) shade(unique[i], out.vertices[i]);
