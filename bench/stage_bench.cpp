@@ -130,10 +130,8 @@ void BM_ClipCodes(benchmark::State& state) {
   std::vector<VertexClipCodes> codes(v.size());
   for (auto _ : state) {
     if (method == 0) {
-      for (size_t i = 0; i < v.size(); ++i) {
-        const glm::dvec4 p(v[i].position);
-        codes[i] = {true, outsideMask(planes.reject, p), outsideMask(planes.clip, p)};
-      }
+      for (size_t i = 0; i < v.size(); ++i)
+        codes[i] = referenceClipCodes(glm::dvec4(v[i].position), planes);
     } else {
       for (size_t i = 0; i < v.size(); i += detail::kClipCodeBlock)
         detail::clipCodesBlock(&v[i], int(std::min<size_t>(detail::kClipCodeBlock, v.size() - i)),

@@ -14,7 +14,7 @@ namespace {
     const AxisPlane& plane = planes[k];
     const double* x = block.p[plane.axis];
     const double* w = block.p[3];
-    const double a = plane.a, b = plane.b;
+    const double a = plane.plane[plane.axis], b = plane.plane.w;
     const uint64_t bits = plane.bits, unsureBit = uint64_t{1} << k;
     // isOutside's filter (clip.h) without its two zero terms: the sum is within
     // 2^-52 * (|t0| + |t1|) + 2^-1074 of the exact value, well inside the bound.

@@ -32,16 +32,28 @@ struct VertexClipCodes {
   unsigned clip;    // bit i: outside ClipPlanes::clip[i]
 };
 
-// A plane a*p[axis] + b*p.w >= 0, and the reject and clip bits it stands for.
+// A plane whose only nonzero x, y, z coefficient is plane[axis] (if any): plane[axis] * p[axis] +
+// plane.w * p.w >= 0. And the reject and clip bits it stands for.
 struct AxisPlane {
   int axis;
-  double a, b;
   uint32_t bits;  // reject bits in 0..15, clip bits in 16..31
   ClipPlane plane;
 };
 
+// The plane-by-plane codes of one vertex (outsideMask), the reference the block evaluation
+// equals; planes of other shapes take it.
+inline VertexClipCodes referenceClipCodes(const glm::dvec4& p, const ClipPlanes& planes) {
+  const bool finite =
+      std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.w);
+  return {finite, finite ? outsideMask(planes.reject, p) : 0u,
+          finite ? outsideMask(planes.clip, p) : 0u};
+}
+
 // The distinct planes of `planes` in two-term form; false when one has another shape.
 inline bool axisPlanes(const ClipPlanes& planes, std::vector<AxisPlane>& out) {
+  // Each set's bits fit its 16, and a plane's index fits the 64-bit undecided mask.
+  static_assert(std::tuple_size_v<decltype(planes.reject)> <= 16 &&
+                ClipPlanes::kClipPlaneCount <= 16);
   out.clear();
   auto add = [&](const ClipPlane& p, uint32_t bit) {
     int axis = 0, nonzero = 0;
@@ -56,14 +68,14 @@ inline bool axisPlanes(const ClipPlanes& planes, std::vector<AxisPlane>& out) {
         q.bits |= bit;
         return true;
       }
-    out.push_back({axis, p[axis], p.w, bit, p});
+    out.push_back({axis, bit, p});
     return true;
   };
   for (size_t i = 0; i < planes.reject.size(); ++i)
     if (!add(planes.reject[i], 1u << i)) return false;
   for (size_t i = 0; i < planes.clip.size(); ++i)
     if (!add(planes.clip[i], 1u << (16 + i))) return false;
-  return out.size() <= 32;
+  return true;
 }
 
 namespace detail {
@@ -129,13 +141,8 @@ ScratchVector<VertexClipCodes> computeClipCodes(const ScratchVector<ShadedVertex
                                axis, avx2, &codes[i]);
       return;
     }
-    for (size_t i = begin; i < end; ++i) {
-      const glm::dvec4 p(vertices[i].position);
-      const bool finite =
-          std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.w);
-      codes[i] = {finite, finite ? outsideMask(planes.reject, p) : 0u,
-                  finite ? outsideMask(planes.clip, p) : 0u};
-    }
+    for (size_t i = begin; i < end; ++i)
+      codes[i] = referenceClipCodes(glm::dvec4(vertices[i].position), planes);
   });
   return codes;
 }
