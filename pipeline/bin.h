@@ -1,4 +1,12 @@
 // Binning: each set-up triangle into the 8x8-pixel tiles it can touch, in submission order.
+//
+// Two levels. Every entry names an 8x8 tile, except where a large triangle covers a whole coarse
+// tile (8x8 tiles, 64x64 pixels): there it gets one coarse entry instead of 64 tile entries. A
+// large triangle is tested per coarse tile first, and per tile only inside the coarse tiles it
+// covers partly, so binning it costs in proportion to its edges' length, not its area (W3's
+// full-screen layers: one test per 64 tiles). A tile's entries are its own and its coarse tile's,
+// merged in submission order (entries()): exactly the list one-level binning makes, flags
+// included, so the two levels change no output bit and no counter (tests/coarse_bins_test.cpp).
 #pragma once
 
 #include <algorithm>
@@ -21,22 +29,31 @@ namespace rast {
 // found every sample of the tile inside the triangle, so the back end skips its coverage test.
 inline constexpr uint32_t kWholeTileBit = uint32_t{1} << 31;
 
+// A coarse tile is (1 << kCoarseShift)^2 tiles.
+inline constexpr int kCoarseShift = 3;
+inline constexpr int kCoarseTiles = 1 << kCoarseShift;
+
 // Triangle ids grouped by tile. Built from groups of triangles in parallel, then placed by a
 // stable counting sort (tile-major, group-minor), so each bin lists its triangles in submission
 // order whatever the thread count.
 class TileBins {
  public:
   // `memory`: where the bins and their temporaries are allocated (ExecutionOptions::memory).
-  TileBins(int widthPixels, int heightPixels, ScratchMemory* memory = nullptr);
+  TileBins(int widthPixels, int heightPixels, ScratchMemory* memory = nullptr,
+           BinLevels levels = BinLevels::Coarse);
 
   int tilesX() const { return tilesX_; }
   int tilesY() const { return tilesY_; }
   int tileCount() const { return tilesX_ * tilesY_; }
-  size_t entryCount() const { return triangles_.size(); }
+  // (triangle, tile) pairs, a coarse entry counting once per tile of its coarse tile: the length
+  // of every tile's entries() together, whatever the levels.
+  size_t entryCount() const { return triangles_.size() + coarseEntryTiles_; }
+  // Coarse entries, each standing for the tiles of its coarse tile.
+  size_t coarseEntryCount() const { return coarseTriangles_.size(); }
 
-  std::span<const uint32_t> bin(int tile) const {
-    return {triangles_.data() + offsets_[tile], triangles_.data() + offsets_[tile + 1]};
-  }
+  // The triangles binned to `tile`, in submission order: its tile entries and its coarse tile's
+  // entries, merged (in `scratch` when both have some).
+  std::span<const uint32_t> entries(int tile, std::vector<uint32_t>& scratch) const;
 
   // Bins every triangle of `chunks` (a range of ranges of objects with `edges` and `bounds`),
   // naming triangle i of chunk c by id(c, i). `sampleReach`: see classifyTile. Float mode passes
@@ -57,12 +74,14 @@ class TileBins {
     // parts per thread, as groups: two bands per thread measured slower on W3). Part (group,
     // band) is entries index group * bands + band; a tile lies in one band, so the sort
     // (tile-major, then part) still lists each bin's triangles in submission order.
+    // Bands are whole rows of coarse tiles, so that a coarse tile lies in one band too.
     const int bands = chunkGroups == 0 || threads == 1
                           ? 1
-                          : int(std::clamp<size_t>(maxGroups / chunkGroups, 1, size_t(tilesY_)));
-    const int bandRows = (tilesY_ + bands - 1) / bands;
-    std::vector<ScratchVector<Entry>> entries(chunkGroups * size_t(bands),
-                                              ScratchVector<Entry>(ScratchAllocator<Entry>(memory_)));
+                          : int(std::clamp<size_t>(maxGroups / chunkGroups, 1, size_t(coarseY_)));
+    const int bandRows = (coarseY_ + bands - 1) / bands * kCoarseTiles;
+    const ScratchVector<Entry> empty{ScratchAllocator<Entry>(memory_)};
+    std::vector<ScratchVector<Entry>> entries(chunkGroups * size_t(bands), empty);
+    std::vector<ScratchVector<Entry>> coarseEntries(entries.size(), empty);
     std::vector<PipelineStatistics> partStats(entries.size());
     tbb::parallel_for(size_t{0}, entries.size(), [&](size_t part) {
       const size_t g = part / size_t(bands);
@@ -72,10 +91,20 @@ class TileBins {
         for (size_t i = 0; i < chunks[c].size(); ++i)
           addTriangle(id(c, i), chunks[c][i].edges,
                       floatChunks ? &(*floatChunks)[c][i] : nullptr, chunks[c][i].bounds,
-                      format, sampleReach, firstRow, endRow, entries[part], partStats[part]);
+                      format, sampleReach, firstRow, endRow, entries[part],
+                      coarseEntries[part], partStats[part]);
     });
     for (const PipelineStatistics& s : partStats) stats += s;
-    sortByTile(entries);
+    sortByTile(entries, size_t(tileCount()), offsets_, triangles_);
+    sortByTile(coarseEntries, size_t(coarseX_) * size_t(coarseY_), coarseOffsets_,
+               coarseTriangles_);
+    coarseEntryTiles_ = 0;
+    for (int c = 0; c < coarseX_ * coarseY_; ++c) {
+      const int cx = c % coarseX_, cy = c / coarseX_;
+      const size_t tiles = size_t(std::min(kCoarseTiles, tilesX_ - cx * kCoarseTiles)) *
+                           size_t(std::min(kCoarseTiles, tilesY_ - cy * kCoarseTiles));
+      coarseEntryTiles_ += tiles * (coarseOffsets_[c + 1] - coarseOffsets_[c]);
+    }
   }
 
  private:
@@ -85,16 +114,32 @@ class TileBins {
   };
   // Appends the tiles of `bounds` in tile rows [firstRow, endRow) that the corner test does not
   // reject (of the float edges when given: float mode).
+  // Coarse entries go to `coarseOut`, their tile field naming the coarse tile.
   void addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
                    const FloatEdges* floatEdges, const PixelRect& bounds, FixedPointFormat format,
                    int32_t sampleReach, int firstRow, int endRow, ScratchVector<Entry>& out,
-                   PipelineStatistics& stats) const;
-  void sortByTile(const std::vector<ScratchVector<Entry>>& chunks);
+                   ScratchVector<Entry>& coarseOut, PipelineStatistics& stats) const;
+  // Counting sort of `parts` (tile-major, then part) into triangles[offsets[t], offsets[t + 1]).
+  void sortByTile(const std::vector<ScratchVector<Entry>>& parts, size_t tiles,
+                  ScratchVector<uint32_t>& offsets, ScratchVector<uint32_t>& triangles);
+  std::span<const uint32_t> tileBin(int tile) const {
+    return {triangles_.data() + offsets_[tile], triangles_.data() + offsets_[tile + 1]};
+  }
+  std::span<const uint32_t> coarseBin(int tile) const {
+    const int c = (tile / tilesX_ >> kCoarseShift) * coarseX_ + (tile % tilesX_ >> kCoarseShift);
+    return {coarseTriangles_.data() + coarseOffsets_[c],
+            coarseTriangles_.data() + coarseOffsets_[c + 1]};
+  }
 
   int tilesX_, tilesY_;
+  int coarseX_, coarseY_;
+  BinLevels levels_;
   ScratchMemory* memory_;
   ScratchVector<uint32_t> offsets_;    // bin t is triangles_[offsets_[t], offsets_[t + 1])
   ScratchVector<uint32_t> triangles_;
+  ScratchVector<uint32_t> coarseOffsets_;  // the same for coarse tiles
+  ScratchVector<uint32_t> coarseTriangles_;
+  size_t coarseEntryTiles_ = 0;
 };
 
 }  // namespace rast

@@ -61,7 +61,7 @@ Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>&
     clipAndSetupAll(transformed, setup, ClipPlanes::forState(state, mapping), triangles, local);
     clock.lap(&StageTimings::clipSetup);
 
-    TileBins bins(fb.width(), fb.height(), exec.memory);
+    TileBins bins(fb.width(), fb.height(), exec.memory, exec.binLevels);
     bins.build(triangles.chunks, state.format, sampleReach, &SetupTriangles<N>::id, local,
                state.rasterMode == RasterMode::Float ? &triangles.floatChunks : nullptr);
     local.binEntries += bins.entryCount();

@@ -1,5 +1,5 @@
-// How a draw runs: how many threads and which coverage kernel. Neither changes any output bit:
-// tiles are owned by one task at a time and triangles merge in submission order.
+// How a draw runs: threads, coverage kernel, back-end target and binning levels. No choice changes
+// an output bit: tiles are owned by one task at a time and triangles merge in submission order.
 #pragma once
 
 #include <cstddef>
@@ -24,10 +24,15 @@ enum class BackEndTarget {
   Baseline,  // the x86-64 baseline (SSE2) build
 };
 
+// How binning places large triangles (bin.h): per 64x64-pixel coarse tile first, or tile by tile
+// (one level, for study). Either gives every tile the same entries.
+enum class BinLevels { Coarse, TilesOnly };
+
 struct ExecutionOptions {
   int threads = 0;  // worker threads for a draw; 0: every hardware thread
   CoverageKernel coverage = bestCoverageKernel();
   BackEndTarget backEnd = BackEndTarget::Auto;
+  BinLevels binLevels = BinLevels::Coarse;
   // Memory kept between draws (scratch_memory.h); null: each draw allocates its own. The same
   // object may serve any number of draws, one after another or at once.
   ScratchMemory* memory = nullptr;

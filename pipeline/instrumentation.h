@@ -80,9 +80,11 @@ struct DrawCapture {
     tilesX = bins.tilesX();
     tilesY = bins.tilesY();
     binEntries.resize(size_t(bins.tileCount()), 0);
-    for (int t = 0; t < bins.tileCount(); ++t) binEntries[size_t(t)] += uint32_t(bins.bin(t).size());
+    std::vector<uint32_t> scratch;
+    for (int t = 0; t < bins.tileCount(); ++t)
+      binEntries[size_t(t)] += uint32_t(bins.entries(t, scratch).size());
     if (zoomTileX < 0 || zoomTileX >= tilesX || zoomTileY < 0 || zoomTileY >= tilesY) return;
-    for (const uint32_t entry : bins.bin(zoomTileY * tilesX + zoomTileX)) {
+    for (const uint32_t entry : bins.entries(zoomTileY * tilesX + zoomTileX, scratch)) {
       const auto& t = triangles[entry & ~kWholeTileBit];
       zoomTriangles.push_back({t.edges, t.bounds, t.primitiveId});
     }

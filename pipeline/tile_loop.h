@@ -16,6 +16,7 @@
 #include <cstring>
 #include <limits>
 #include <span>
+#include <vector>
 
 #include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
@@ -63,6 +64,7 @@ struct TileBuffer {
   TileLanes<uint32_t> counts;
   ShadedColors shaded;
   TileLanes<PackedColor> packed{};
+  std::vector<uint32_t> mergedEntries;  // TileBins::entries' scratch
 };
 
 // Bounds of the depth values stored in a tile, so a triangle whose depth range lies entirely on
@@ -636,8 +638,9 @@ RAST_TILE_INLINE void rasterizeTileRange(int begin, int end, const TileBins& bin
                                          const BackEndConfig& cfg, TileBuffer& buffer,
                                          PipelineStatistics& stats) {
   for (int tile = begin; tile != end; ++tile)
-    rasterizeTile<PS, N>(tile % bins.tilesX(), tile / bins.tilesX(), bins.bin(tile), triangles,
-                         shader, cfg, buffer, stats);
+    rasterizeTile<PS, N>(tile % bins.tilesX(), tile / bins.tilesX(),
+                         bins.entries(tile, buffer.mergedEntries), triangles, shader, cfg, buffer,
+                         stats);
 }
 
 template <PixelShader PS, int N>

@@ -275,6 +275,33 @@ TEST_F(RasterizeTool, ObjNonNumericCoordinate) {
                      {"word.obj:2:", "'abc' is not a number"});
 }
 
+// --bin-levels changes neither the picture nor a counter: a quad over a 300x200 image (coarse
+// entries for the tiles inside each half) under a smaller triangle, with either levels.
+TEST_F(RasterizeTool, BinLevelsGiveTheSameImageAndCounters) {
+  write("quad.txt",
+        "0 0 0.5  300 0 0.5  300 200 0.5\n0 0 0.5  300 200 0.5  0 200 0.5\n"
+        "20 30 0.25  170 60 0.25  90 180 0.25\n");
+  std::vector<uint8_t> images[2];
+  nlohmann::json stats[2];
+  const char* levels[2] = {"coarse", "tiles"};
+  for (int k = 0; k < 2; ++k) {
+    const std::string image = path(std::string(levels[k]) + ".png").string();
+    const std::string json = path(std::string(levels[k]) + ".json").string();
+    const RunResult r = run({path("quad.txt").string(), "--width", "300", "--height", "200",
+                             "--bin-levels", levels[k], "-o", image, "--stats", json});
+    ASSERT_TRUE(r.exited);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string bytes = readFile(image);
+    images[k].assign(bytes.begin(), bytes.end());
+    stats[k] = nlohmann::json::parse(readFile(json));
+  }
+  EXPECT_EQ(images[0], images[1]);
+  for (const char* key : {"bin.entries", "bin.tiles_trivially_rejected",
+                          "raster.tiles_trivially_accepted", "merge.fragments_written"})
+    EXPECT_EQ(stats[0].at(key), stats[1].at(key)) << key;
+  EXPECT_GT(stats[0].at("merge.fragments_written").get<uint64_t>(), 300u * 200u);  // the quad, then the triangle
+}
+
 TEST_F(RasterizeTool, UnknownOption) {
   expectOneLineError({"--frobnicate", "-o", path("out.png").string()}, {"--frobnicate"});
 }
@@ -283,6 +310,8 @@ TEST_F(RasterizeTool, BadOptionValues) {
   expectOneLineError({"--subpixel-bits", "9", "-o", path("out.png").string()},
                      {"--subpixel-bits", "9"});
   expectOneLineError({"--width", "0", "-o", path("out.png").string()}, {"--width", "0"});
+  expectOneLineError({"--bin-levels", "three", "-o", path("out.png").string()},
+                     {"--bin-levels", "three"});
 }
 
 TEST_F(RasterizeTool, UnwritableOutput) {

@@ -198,8 +198,9 @@ TEST(TileShortcuts, WholeTileBinEntriesAreTilesCoverTileFindsInside) {
       TileBins bins(screen.x1, screen.y1);
       PipelineStatistics stats;
       bins.build(chunks, format, reach, &SetupTriangles<0>::id, stats);
+      std::vector<uint32_t> scratch;
       for (int tile = 0; tile < bins.tileCount(); ++tile)
-        for (const uint32_t entry : bins.bin(tile)) {
+        for (const uint32_t entry : bins.entries(tile, scratch)) {
           const SetupTriangle<0>& t = chunks[0][entry & ~kWholeTileBit];
           const int tx = tile % bins.tilesX(), ty = tile / bins.tilesX();
           bool allInside = true;

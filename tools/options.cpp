@@ -82,6 +82,10 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
                  "Instruction set of the tile loop: auto (AVX2 where the CPU has it) or baseline "
                  "(x86-64 SSE2); outputs are identical for either")
       ->check(CLI::IsMember({"auto", "baseline"}));
+  app.add_option("--bin-levels", o.binLevels,
+                 "Binning of large triangles: coarse (per 64x64-pixel tile first) or tiles (tile by "
+                 "tile); outputs and statistics are identical for either")
+      ->check(CLI::IsMember({"coarse", "tiles"}));
   app.add_option("--shading", o.shading,
                  "lambert, normals, depth, triangle-id, constant or blinn-phong (shadow-mapped) "
                  "(default: lambert for meshes, constant for triangle lists, the scene file's "

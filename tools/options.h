@@ -19,6 +19,7 @@ struct Options {
   int threads = 0;
   std::string coverageKernel = "auto";
   std::string backEnd = "auto";
+  std::string binLevels = "coarse";
   bool listKernels = false;
   std::string output, depthOutput, countOutput, statsOutput;
   std::vector<float> eye, target;
