@@ -80,25 +80,36 @@ class TileBins {
                           : int(std::clamp<size_t>(maxGroups / chunkGroups, 1, size_t(coarseY_)));
     const int bandRows = (coarseY_ + bands - 1) / bands * kCoarseTiles;
     const ScratchVector<Entry> empty{ScratchAllocator<Entry>(memory_)};
-    std::vector<ScratchVector<Entry>> entries(chunkGroups * size_t(bands), empty);
-    std::vector<ScratchVector<Entry>> coarseEntries(entries.size(), empty);
-    std::vector<PipelineStatistics> partStats(entries.size());
-    tbb::parallel_for(size_t{0}, entries.size(), [&](size_t part) {
+    std::vector<Part> parts(chunkGroups * size_t(bands), Part{empty, empty, {}});
+    tbb::parallel_for(size_t{0}, parts.size(), [&](size_t part) {
       const size_t g = part / size_t(bands);
       const int firstRow = int(part % size_t(bands)) * bandRows;
       const int endRow = std::min(tilesY_, firstRow + bandRows);
+      Part& out = parts[part];
       for (size_t c = g * groupSize; c < std::min(chunks.size(), (g + 1) * groupSize); ++c)
-        for (size_t i = 0; i < chunks[c].size(); ++i)
+        for (size_t i = 0; i < chunks[c].size(); ++i) {
+          const PixelRect& b = chunks[c][i].bounds;
+          const int tx = b.x0 >> kTileShift, ty = b.y0 >> kTileShift;
+          if (tx == (b.x1 - 1) >> kTileShift && ty == (b.y1 - 1) >> kTileShift) {
+            // A one-tile triangle is not tested: its bounds already say it touches the tile.
+            if (ty >= firstRow && ty < endRow)
+              out.tiles.push_back({uint32_t(ty * tilesX_ + tx), id(c, i)});
+            continue;
+          }
           addTriangle(id(c, i), chunks[c][i].edges,
-                      floatChunks ? &(*floatChunks)[c][i] : nullptr, chunks[c][i].bounds,
-                      format, sampleReach, firstRow, endRow, entries[part],
-                      coarseEntries[part], partStats[part]);
+                      floatChunks ? &(*floatChunks)[c][i] : nullptr, b, format, sampleReach,
+                      firstRow, endRow, out);
+        }
     });
-    for (const PipelineStatistics& s : partStats) stats += s;
-    sortByTile(entries, size_t(tileCount()), offsets_, triangles_);
-    sortByTile(coarseEntries, size_t(coarseX_) * size_t(coarseY_), coarseOffsets_,
-               coarseTriangles_);
+    for (const Part& p : parts) stats += p.stats;
+    sortByTile(parts, &Part::tiles, size_t(tileCount()), offsets_, triangles_);
     coarseEntryTiles_ = 0;
+    coarseTriangles_.clear();
+    std::fill(coarseOffsets_.begin(), coarseOffsets_.end(), 0u);
+    if (std::all_of(parts.begin(), parts.end(), [](const Part& p) { return p.coarse.empty(); }))
+      return;
+    sortByTile(parts, &Part::coarse, size_t(coarseX_) * size_t(coarseY_), coarseOffsets_,
+               coarseTriangles_);
     for (int c = 0; c < coarseX_ * coarseY_; ++c) {
       const int cx = c % coarseX_, cy = c / coarseX_;
       const size_t tiles = size_t(std::min(kCoarseTiles, tilesX_ - cx * kCoarseTiles)) *
@@ -112,15 +123,27 @@ class TileBins {
     uint32_t tile;
     uint32_t triangle;
   };
-  // Appends the tiles of `bounds` in tile rows [firstRow, endRow) that the corner test does not
-  // reject (of the float edges when given: float mode).
-  // Coarse entries go to `coarseOut`, their tile field naming the coarse tile.
+  // What one part of the binning (a group of chunks, a band of tile rows) makes.
+  struct Part {
+    ScratchVector<Entry> tiles;
+    ScratchVector<Entry> coarse;  // their tile field names a coarse tile
+    PipelineStatistics stats;
+  };
+  // Appends the tiles of `bounds` (more than one) in tile rows [firstRow, endRow) that the corner
+  // test does not reject (of the float edges when given: float mode).
   void addTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
                    const FloatEdges* floatEdges, const PixelRect& bounds, FixedPointFormat format,
-                   int32_t sampleReach, int firstRow, int endRow, ScratchVector<Entry>& out,
-                   ScratchVector<Entry>& coarseOut, PipelineStatistics& stats) const;
-  // Counting sort of `parts` (tile-major, then part) into triangles[offsets[t], offsets[t + 1]).
-  void sortByTile(const std::vector<ScratchVector<Entry>>& parts, size_t tiles,
+                   int32_t sampleReach, int firstRow, int endRow, Part& out) const;
+  // Tiles [tx0, tx1] x [ty0, ty1] of a triangle too large for one coarse tile: per coarse tile.
+  void addLargeTriangle(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
+                        const PixelRect& bounds, FixedPointFormat format, int32_t sampleReach,
+                        int tx0, int tx1, int ty0, int ty1, Part& out) const;
+  void binTileRect(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
+                   const PixelRect& bounds, FixedPointFormat format, int32_t sampleReach,
+                   int fx0, int fx1, int fy0, int fy1, Part& out) const;
+  // Counting sort of the parts' `list` (tile-major, then part) into
+  // triangles[offsets[t], offsets[t + 1]).
+  void sortByTile(const std::vector<Part>& parts, ScratchVector<Entry> Part::*list, size_t tiles,
                   ScratchVector<uint32_t>& offsets, ScratchVector<uint32_t>& triangles);
   std::span<const uint32_t> tileBin(int tile) const {
     return {triangles_.data() + offsets_[tile], triangles_.data() + offsets_[tile + 1]};

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <span>
@@ -457,11 +458,26 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
     if (useBounds) {
       const float ax = float(x0 - t.bounds.x0), ay = float(y0 - t.bounds.y0);
       const float bx = ax + float(cols - 1), by = ay + float(rows - 1);
-      const float corners[4] = {
-          interpolateDepth(t, ax + offMinX, ay + offMinY), interpolateDepth(t, bx + offMaxX, ay + offMinY),
-          interpolateDepth(t, ax + offMinX, by + offMaxY), interpolateDepth(t, bx + offMaxX, by + offMaxY)};
-      triMin = std::min({corners[0], corners[1], corners[2], corners[3]});
-      triMax = std::max({corners[0], corners[1], corners[2], corners[3]});
+      const PlaneEquation& plane = t.depth;
+      if (std::fabs(plane.at0) < 0x1p100f && std::fabs(plane.ddx) < 0x1p100f &&
+          std::fabs(plane.ddy) < 0x1p100f) {
+        // The plane's float value is monotonic in dx and in dy (TileDepthBounds), and with these
+        // magnitudes (|dx|, |dy| < 2^15) no step of it overflows: its least value over the tile
+        // is at the corner its slopes point away from and its greatest at the opposite one, the
+        // min and max of the four corners in two evaluations.
+        const float left = ax + offMinX, right = bx + offMaxX, top = ay + offMinY,
+                    bottom = by + offMaxY;
+        const bool growsRight = plane.ddx >= 0, growsDown = plane.ddy >= 0;
+        triMin = interpolateDepth(t, growsRight ? left : right, growsDown ? top : bottom);
+        triMax = interpolateDepth(t, growsRight ? right : left, growsDown ? bottom : top);
+      } else {
+        const float corners[4] = {interpolateDepth(t, ax + offMinX, ay + offMinY),
+                                  interpolateDepth(t, bx + offMaxX, ay + offMinY),
+                                  interpolateDepth(t, ax + offMinX, by + offMaxY),
+                                  interpolateDepth(t, bx + offMaxX, by + offMaxY)};
+        triMin = std::min({corners[0], corners[1], corners[2], corners[3]});
+        triMax = std::max({corners[0], corners[1], corners[2], corners[3]});
+      }
       // Quantising is monotonic, so the quantised range bounds the quantised lanes.
       if (cfg.quantize) {
         triMin = cfg.quantize(triMin);

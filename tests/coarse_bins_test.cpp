@@ -77,7 +77,8 @@ TEST(CoarseBins, EveryTileGetsTheEntriesOfOneLevelBinning) {
           t.bounds = setup.bounds;
           chunks[c].push_back(t);
         }
-      const Binned one = binWith(BinLevels::TilesOnly, 1, screen.x1, screen.y1, chunks, format, reach);
+      const Binned one =
+          binWith(BinLevels::TilesOnly, 1, screen.x1, screen.y1, chunks, format, reach);
       EXPECT_EQ(one.coarseEntries, 0u);
       for (const int threads : {1, 2, 4}) {
         SCOPED_TRACE(testing::Message() << format.name() << ", " << samples << " samples, "
@@ -117,8 +118,8 @@ TEST(CoarseBins, DrawsAreTheSameWithEitherLevels) {
       const uint32_t b = uint32_t(vertices.size());
       const float cx = unit(rng) * width, cy = unit(rng) * height, size = 8.0f + 300.0f * unit(rng);
       for (int v = 0; v < 3; ++v)
-        vertices.push_back({glm::vec3(cx + size * (unit(rng) - 0.5f), cy + size * (unit(rng) - 0.5f),
-                                      unit(rng))});
+        vertices.push_back({glm::vec3(cx + size * (unit(rng) - 0.5f),
+                                      cy + size * (unit(rng) - 0.5f), unit(rng))});
       for (uint32_t v : {0u, 1u, 2u}) indices.push_back(b + v);
     }
   }
