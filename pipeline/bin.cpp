@@ -160,30 +160,35 @@ void TileBins::addLargeTriangle(uint32_t triangle, const std::array<EdgeFunction
 }
 
 void TileBins::sortByTile(const std::vector<Part>& parts, ScratchVector<Entry> Part::*list,
-                          size_t tiles, ScratchVector<uint32_t>& offsets,
+                          size_t bands, size_t tiles, ScratchVector<uint32_t>& offsets,
                           ScratchVector<uint32_t>& triangles) {
-  // Per (part, tile): the count, then the next slot.
-  ScratchVector<uint32_t> cursor(parts.size() * tiles, 0, ScratchAllocator<uint32_t>(memory_));
-  tbb::parallel_for(size_t{0}, parts.size(), [&](size_t c) {
-    for (const Entry& e : parts[c].*list) ++cursor[c * tiles + e.tile];
+  // Per (group, tile): the count, then the next slot. Part p is band p % bands of group
+  // p / bands, and a tile lies in one band, so a group's parts never share a tile: counting per
+  // group instead of per part keeps the order and makes the serial pass bands times shorter.
+  const size_t groups = parts.size() / bands;
+  ScratchVector<uint32_t> cursor(groups * tiles, 0, ScratchAllocator<uint32_t>(memory_));
+  tbb::parallel_for(size_t{0}, parts.size(), [&](size_t p) {
+    uint32_t* group = cursor.data() + p / bands * tiles;
+    for (const Entry& e : parts[p].*list) ++group[e.tile];
   });
   offsets[0] = 0;
   for (size_t t = 0; t < tiles; ++t) {
     uint32_t total = 0;
-    for (size_t c = 0; c < parts.size(); ++c) total += cursor[c * tiles + t];
+    for (size_t g = 0; g < groups; ++g) total += cursor[g * tiles + t];
     offsets[t + 1] = offsets[t] + total;
   }
   tbb::parallel_for(size_t{0}, tiles, [&](size_t t) {
     uint32_t slot = offsets[t];
-    for (size_t c = 0; c < parts.size(); ++c) {
-      const uint32_t n = cursor[c * tiles + t];
-      cursor[c * tiles + t] = slot;
+    for (size_t g = 0; g < groups; ++g) {
+      const uint32_t n = cursor[g * tiles + t];
+      cursor[g * tiles + t] = slot;
       slot += n;
     }
   });
   triangles.resize(offsets[tiles]);
-  tbb::parallel_for(size_t{0}, parts.size(), [&](size_t c) {
-    for (const Entry& e : parts[c].*list) triangles[cursor[c * tiles + e.tile]++] = e.triangle;
+  tbb::parallel_for(size_t{0}, parts.size(), [&](size_t p) {
+    uint32_t* group = cursor.data() + p / bands * tiles;
+    for (const Entry& e : parts[p].*list) triangles[group[e.tile]++] = e.triangle;
   });
 }
 

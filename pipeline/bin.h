@@ -102,14 +102,14 @@ class TileBins {
         }
     });
     for (const Part& p : parts) stats += p.stats;
-    sortByTile(parts, &Part::tiles, size_t(tileCount()), offsets_, triangles_);
+    sortByTile(parts, &Part::tiles, size_t(bands), size_t(tileCount()), offsets_, triangles_);
     coarseEntryTiles_ = 0;
     coarseTriangles_.clear();
     std::fill(coarseOffsets_.begin(), coarseOffsets_.end(), 0u);
     if (std::all_of(parts.begin(), parts.end(), [](const Part& p) { return p.coarse.empty(); }))
       return;
-    sortByTile(parts, &Part::coarse, size_t(coarseX_) * size_t(coarseY_), coarseOffsets_,
-               coarseTriangles_);
+    sortByTile(parts, &Part::coarse, size_t(bands), size_t(coarseX_) * size_t(coarseY_),
+               coarseOffsets_, coarseTriangles_);
     for (int c = 0; c < coarseX_ * coarseY_; ++c) {
       const int cx = c % coarseX_, cy = c / coarseX_;
       const size_t tiles = size_t(std::min(kCoarseTiles, tilesX_ - cx * kCoarseTiles)) *
@@ -143,8 +143,9 @@ class TileBins {
                    int fx0, int fx1, int fy0, int fy1, Part& out) const;
   // Counting sort of the parts' `list` (tile-major, then part) into
   // triangles[offsets[t], offsets[t + 1]).
-  void sortByTile(const std::vector<Part>& parts, ScratchVector<Entry> Part::*list, size_t tiles,
-                  ScratchVector<uint32_t>& offsets, ScratchVector<uint32_t>& triangles);
+  void sortByTile(const std::vector<Part>& parts, ScratchVector<Entry> Part::*list, size_t bands,
+                  size_t tiles, ScratchVector<uint32_t>& offsets,
+                  ScratchVector<uint32_t>& triangles);
   std::span<const uint32_t> tileBin(int tile) const {
     return {triangles_.data() + offsets_[tile], triangles_.data() + offsets_[tile + 1]};
   }
