@@ -20,6 +20,7 @@
 #include <vector>
 
 #include <tbb/combinable.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "pipeline/bin.h"
@@ -36,6 +37,9 @@ namespace rast {
 // The back end's helpers are forced inline so that they are compiled as part of the tile loop
 // that calls them, once for the baseline target and once for AVX2 (rasterizeTilesAvx2 below).
 #define RAST_TILE_INLINE [[gnu::always_inline]] inline
+// The same for the tile loop's lambdas: one GCC compiles on its own is built for the baseline
+// target only, whatever its caller's (writePending was, and took 7 % of W3's frame in SSE2).
+#define RAST_TILE_LAMBDA __attribute__((always_inline))
 
 inline constexpr int kTileLanes = kTileSize * kTileSize;
 
@@ -82,6 +86,35 @@ struct TileDepthBounds {
   bool hasNaN = false;
   bool valid = false;
 };
+
+// The bounds of the first `samples` planes of a tile's depth. All 64 lanes: the padding lanes of
+// an edge tile hold one of the tile's own stored values (see load), so they cannot widen the
+// bounds beyond what the tile holds. One accumulator per column, so that the compiler keeps
+// eight lanes in a vector (it does not vectorise a min through one scalar under IEEE rules); the
+// set's min and max do not depend on the order, except for the sign of a zero, which no compare
+// sees. NaN lanes fail both compares, so they leave min and max alone and set hasNaN.
+RAST_TILE_INLINE TileDepthBounds tileDepthBounds(const std::array<TileLanes<float>, kMaxSamples>& depth,
+                                                 int samples) {
+  std::array<float, kTileSize> mn, mx;
+  std::array<int, kTileSize> nan{};
+  mn.fill(std::numeric_limits<float>::infinity());
+  mx.fill(-std::numeric_limits<float>::infinity());
+  for (int s = 0; s < samples; ++s)
+    for (int ly = 0; ly < kTileSize; ++ly)
+      for (int lx = 0; lx < kTileSize; ++lx) {
+        const float d = depth[s][ly * kTileSize + lx];
+        nan[lx] |= d != d;
+        mn[lx] = d < mn[lx] ? d : mn[lx];
+        mx[lx] = d > mx[lx] ? d : mx[lx];
+      }
+  TileDepthBounds b{mn[0], mx[0], nan[0] != 0, true};
+  for (int lx = 1; lx < kTileSize; ++lx) {
+    b.min = mn[lx] < b.min ? mn[lx] : b.min;
+    b.max = mx[lx] > b.max ? mx[lx] : b.max;
+    b.hasNaN |= nan[lx] != 0;
+  }
+  return b;
+}
 
 constexpr bool isOrderedCompare(CompareOp op) {
   return op == CompareOp::Less || op == CompareOp::LessEqual || op == CompareOp::Greater ||
@@ -234,7 +267,7 @@ template <PixelShader PS, int N>
 RAST_TILE_INLINE CoverageMask shadePixels(const SetupTriangle<N>& t, int x0, int y0, CoverageMask pixels,
                          const PS& shader, ShadedColors& out, PipelineStatistics& stats) {
   CoverageMask kept = pixels;
-  auto shadeOne = [&](int bit, Fragment<N>& fragment) {
+  auto shadeOne = [&](int bit, Fragment<N>& fragment) RAST_TILE_LAMBDA {
     const int px = x0 + bit % kTileSize, py = y0 + bit / kTileSize;
     const float dx = float(px - t.bounds.x0), dy = float(py - t.bounds.y0);
     fragment.x = px;
@@ -337,7 +370,7 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
   // Lanes beyond the framebuffer's edge are never covered (bounds stop at the edge) and never
   // stored; they hold a copy of lane 0, a value of the tile's own, so that they cannot widen the
   // tile's depth bounds.
-  auto load = [&](auto* plane, auto& lanes, auto pad) {
+  auto load = [&](auto* plane, auto& lanes, auto pad) RAST_TILE_LAMBDA {
     for (int ly = 0; ly < rows; ++ly) {
       const auto* row = plane + size_t(y0 + ly) * cfg.width + x0;
       if (cols == kTileSize) std::memcpy(&lanes[ly * kTileSize], row, sizeof(lanes[0]) * kTileSize);
@@ -348,7 +381,7 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
         for (int lx = 0; lx < kTileSize; ++lx)
           if (lx >= cols || ly >= rows) lanes[ly * kTileSize + lx] = pad(lanes);
   };
-  auto store = [&](auto* plane, const auto& lanes) {
+  auto store = [&](auto* plane, const auto& lanes) RAST_TILE_LAMBDA {
     for (int ly = 0; ly < rows; ++ly) {
       auto* row = plane + size_t(y0 + ly) * cfg.width + x0;
       if (cols == kTileSize) std::memcpy(row, &lanes[ly * kTileSize], sizeof(lanes[0]) * kTileSize);
@@ -394,7 +427,7 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
   const SetupTriangle<N>* pendingDepth = nullptr;
   bool pendingColor = false;
   PackedColor pendingColorValue = 0;
-  auto writePending = [&] {
+  auto writePending = [&]() RAST_TILE_LAMBDA {
     if (pendingDepth)
       for (int s = 0; s < S; ++s) {
         depthLanes(*pendingDepth, x0, y0, cfg.samples.offsetXPixels(s),
@@ -485,22 +518,7 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
       }
       if (!stored.valid) {
         writePending();
-        stored = {std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
-                  false, true};
-        for (int s = 0; s < S; ++s) {
-          // All 64 lanes: the padding lanes of an edge tile hold one of the tile's own stored
-          // values (see load), so they cannot widen the bounds beyond what the tile holds.
-          float mn = stored.min, mx = stored.max;
-          int nan = 0;
-          for (const float d : tile.depth[s]) {
-            nan |= d != d;
-            mn = d < mn ? d : mn;
-            mx = d > mx ? d : mx;
-          }
-          stored.min = mn;
-          stored.max = mx;
-          stored.hasNaN |= nan != 0;
-        }
+        stored = tileDepthBounds(tile.depth, S);
       }
       if (allFail(cfg.compare, triMin, triMax, stored)) {
         stats.depthTestsFailed += covered;
@@ -543,7 +561,7 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
         if (cfg.quantizeDepthLanes) cfg.quantizeDepthLanes(z[s], rowBegin, rowEnd);
       }
 
-    auto depthTest = [&] {
+    auto depthTest = [&]() RAST_TILE_LAMBDA {
       uint64_t passed = 0;
       anySample = 0;
       for (int s = 0; s < S; ++s) {
@@ -714,11 +732,13 @@ void runBackEnd(Framebuffer& fb, const PipelineState& state, const TileBins& bin
   cfg.height = fb.height();
 
   tbb::combinable<PipelineStatistics> perTask;
+  // One per thread, not per task: a TileBuffer is 6 KB that a task would zero for a few tiles.
+  tbb::enumerable_thread_specific<TileBuffer> buffers;
   const bool avx2 = exec.backEnd == BackEndTarget::Auto && cpuHasAvx2BackEnd();
   tbb::parallel_for(tbb::blocked_range<int>(0, bins.tileCount(), 8),
                     [&](const tbb::blocked_range<int>& tiles) {
     PipelineStatistics& local = perTask.local();
-    TileBuffer buffer;
+    TileBuffer& buffer = buffers.local();
     if (avx2)
       rasterizeTilesAvx2<PS, N>(tiles.begin(), tiles.end(), bins, triangles, shader, cfg, buffer,
                                 local);
