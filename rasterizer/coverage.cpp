@@ -4,19 +4,6 @@
 
 namespace rast {
 
-CoverageMask rectMask(const PixelRect& rect, int tileX, int tileY) {
-  const int ox = tileX * kTileSize, oy = tileY * kTileSize;
-  const int x0 = std::clamp(rect.x0 - ox, 0, kTileSize), x1 = std::clamp(rect.x1 - ox, 0, kTileSize);
-  const int y0 = std::clamp(rect.y0 - oy, 0, kTileSize), y1 = std::clamp(rect.y1 - oy, 0, kTileSize);
-  if (x0 >= x1 || y0 >= y1) return 0;
-  // The row's bits copied into all eight bytes, then the rows outside [y0, y1) cleared.
-  const uint64_t row = ((uint64_t{1} << (x1 - x0)) - 1) << x0;
-  const uint64_t columns = row * 0x0101010101010101ull;
-  const uint64_t rows = (y1 == kTileSize ? ~uint64_t{0} : (uint64_t{1} << (8 * y1)) - 1) &
-                        ~((uint64_t{1} << (8 * y0)) - 1);
-  return columns & rows;
-}
-
 CoverageMask coverageScalar(const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
                             int tileX, int tileY, FixedPointFormat format, int32_t offsetX,
                             int32_t offsetY) {
