@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include <random>
+#include <string>
 
 #include <glm/vec2.hpp>
 
@@ -186,11 +187,13 @@ void BM_BinSmallTriangles(benchmark::State& state) {
 }
 BENCHMARK(BM_BinSmallTriangles)->Arg(10)->Arg(1000)->Unit(benchmark::kMicrosecond);
 
-// W3's layers: 16 full-screen quads (32 triangles), binned with both levels (0: coarse tiles
-// first, 1: tile by tile), one thread. Items: (triangle, tile) pairs, counted as one-level binning
-// makes them, so the two rates compare directly.
+// W3's layers: 16 full-screen quads (32 triangles), binned with both levels (first argument 0:
+// coarse tiles first, 1: tile by tile) in both precisions (second: fraction bits), one thread.
+// Items: (triangle, tile) pairs, counted as one-level binning makes them, so the rates compare
+// directly.
 void BM_BinFullScreenLayers(benchmark::State& state) {
   const BinLevels levels = state.range(0) == 0 ? BinLevels::Coarse : BinLevels::TilesOnly;
+  const FixedPointFormat format = FixedPointFormat::withFractionBits(int(state.range(1)));
   std::vector<ShadedVertex<3>> v;
   for (int layer = 0; layer < 16; ++layer) {
     const float z = float(layer) / 16;
@@ -198,22 +201,24 @@ void BM_BinFullScreenLayers(benchmark::State& state) {
                         glm::vec2(0, 0), glm::vec2(1920, 1080), glm::vec2(0, 1080)})
       v.push_back({glm::vec4(p, z, 1.0f), {0, 0, 0}});
   }
-  const std::vector<std::vector<SetupTriangle<3>>> chunks = {setUp(v, FixedPointFormat::d24_4())};
+  const std::vector<std::vector<SetupTriangle<3>>> chunks = {setUp(v, format)};
   tbb::task_arena one(1);
   size_t entries = 0;
   for (auto _ : state) {
     TileBins bins(1920, 1080, nullptr, levels);
     PipelineStatistics stats;
-    one.execute([&] {
-      bins.build(chunks, FixedPointFormat::d24_4(), 0, &SetupTriangles<3>::id, stats);
-    });
+    one.execute([&] { bins.build(chunks, format, 0, &SetupTriangles<3>::id, stats); });
     entries = bins.entryCount();
     benchmark::DoNotOptimize(entries);
   }
-  state.SetLabel(levels == BinLevels::Coarse ? "coarse tiles first" : "tile by tile");
+  state.SetLabel(std::string(levels == BinLevels::Coarse ? "coarse tiles first, " : "tile by tile, ") +
+                 format.name());
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(entries));
 }
-BENCHMARK(BM_BinFullScreenLayers)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BinFullScreenLayers)
+    ->ArgNames({"levels", "bits"})
+    ->ArgsProduct({{0, 1}, {4, 8}})
+    ->Unit(benchmark::kMicrosecond);
 
 // Partial tiles only (the per-sample work), for each kernel and precision.
 void BM_RasterCoverage(benchmark::State& state, const CoverageKernel& kernel, int bits) {
