@@ -35,7 +35,7 @@ inline constexpr int kCoarseTiles = 1 << kCoarseShift;
 
 // Triangle ids grouped by tile. Built from groups of triangles in parallel, then placed by a
 // stable counting sort (tile-major, group-minor), so each bin lists its triangles in submission
-// order whatever the thread count.
+// order whatever the thread count. Coarse tiles get the same sort of their own.
 class TileBins {
  public:
   // `memory`: where the bins and their temporaries are allocated (ExecutionOptions::memory).
@@ -72,8 +72,8 @@ class TileBins {
     // With several threads, draws of few chunks (W3: 32 full-screen triangles, one chunk) are
     // also split into bands of tile rows, so that their many tiles are binned in parallel (four
     // parts per thread, as groups: two bands per thread measured slower on W3). Part (group,
-    // band) is entries index group * bands + band; a tile lies in one band, so the sort
-    // (tile-major, then part) still lists each bin's triangles in submission order.
+    // band) is parts[group * bands + band]; a tile lies in one band, so the sort (tile-major, then
+    // group) still lists each bin's triangles in submission order.
     // Bands are whole rows of coarse tiles, so that a coarse tile lies in one band too.
     const int bands = chunkGroups == 0 || threads == 1
                           ? 1
@@ -141,7 +141,7 @@ class TileBins {
   void binTileRect(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
                    const PixelRect& bounds, FixedPointFormat format, int32_t sampleReach,
                    int fx0, int fx1, int fy0, int fy1, Part& out) const;
-  // Counting sort of the parts' `list` (tile-major, then part) into
+  // Counting sort of the parts' `list` (tile-major, then group) into
   // triangles[offsets[t], offsets[t + 1]).
   void sortByTile(const std::vector<Part>& parts, ScratchVector<Entry> Part::*list, size_t bands,
                   size_t tiles, ScratchVector<uint32_t>& offsets,
