@@ -42,13 +42,13 @@ Status renderLitMeshFrame(Framebuffer& fb, const LitMeshScene& scene, bool color
                           PipelineStatistics& stats, const ExecutionOptions& exec) {
   PipelineState state = workloadState(fb.width(), fb.height(), PositionSpace::Clip);
   state.colorWrite = colorWrite;
-  clearFramebuffer(fb, kClearColor, kClearDepth, exec);
+  fb.clear(kClearColor, kClearDepth);
   return drawLitMesh(fb, state, scene, stats, exec);
 }
 
 Status renderFlatFrame(Framebuffer& fb, const WindowGeometry& geometry,
                        PipelineStatistics& stats, const ExecutionOptions& exec) {
-  clearFramebuffer(fb, kClearColor, kClearDepth, exec);
+  fb.clear(kClearColor, kClearDepth);
   return drawFlatGeometry(fb, workloadState(fb.width(), fb.height(), PositionSpace::Window),
                           geometry, stats, exec);
 }

@@ -1,10 +1,6 @@
 #include "pipeline/draw.h"
 
-#include <algorithm>
 #include <string>
-
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 namespace rast {
 
@@ -14,21 +10,6 @@ PixelRect drawableRect(const Framebuffer& fb, const PipelineState& state) {
       PixelRect{0, 0, fb.width(), fb.height()});
   if (state.scissor) rect = rect.intersect(*state.scissor);
   return rect;
-}
-
-void clearFramebuffer(Framebuffer& fb, glm::vec4 color, float depth, const ExecutionOptions& exec) {
-  const PackedColor packed = packColor(color);
-  std::vector<PackedColor>& colors = fb.colorPlane();
-  std::vector<float>& depths = fb.depthPlane();
-  constexpr size_t kBlock = size_t{1} << 16;  // values per task: 256 KB of each plane
-  tbb::task_arena arena(exec.threads > 0 ? exec.threads : tbb::task_arena::automatic);
-  arena.execute([&] {
-    tbb::parallel_for(size_t{0}, chunkCount(colors.size(), kBlock), [&](size_t block) {
-      const size_t begin = block * kBlock, end = std::min(colors.size(), begin + kBlock);
-      std::fill(colors.begin() + ptrdiff_t(begin), colors.begin() + ptrdiff_t(end), packed);
-      std::fill(depths.begin() + ptrdiff_t(begin), depths.begin() + ptrdiff_t(end), depth);
-    });
-  });
 }
 
 Status validateDraw(const Framebuffer& fb, const PipelineState& state, size_t vertexCount,

@@ -36,10 +36,6 @@ Status validateDraw(const Framebuffer& fb, const PipelineState& state, size_t ve
 // Viewport, scissor and framebuffer, intersected: the only pixels a draw may touch.
 PixelRect drawableRect(const Framebuffer& fb, const PipelineState& state);
 
-// Framebuffer::clear on the draw's threads (`exec.threads`), in parallel blocks: the same values,
-// without a serial 16 MB write before every 1080p frame.
-void clearFramebuffer(Framebuffer& fb, glm::vec4 color, float depth, const ExecutionOptions& exec);
-
 // Renders the draw into `fb` and adds its counters to `stats`. On an error nothing is drawn.
 // `exec` chooses threads and coverage kernel; no choice changes a bit of the output.
 template <VertexShader VS, PixelShader PS>

@@ -302,30 +302,6 @@ TEST(DrawVertexCache, ScatteredIndicesGiveSameImage) {
   EXPECT_GT(sa.fragmentsWritten, 500u) << "the draw must show something to compare";
 }
 
-// clearFramebuffer writes what Framebuffer::clear writes, every sample plane, for any thread
-// count; counts are left alone by both. 333x211 with 4 samples is 281,052 values a plane: several
-// blocks and a partial last one.
-TEST(DrawClear, ParallelClearEqualsClear) {
-  for (const int threads : {1, 2, 4}) {
-    Framebuffer serial(333, 211, true, 4), parallel(333, 211, true, 4);
-    for (Framebuffer* fb : {&serial, &parallel}) {
-      std::fill(fb->colorPlane().begin(), fb->colorPlane().end(), 0x12345678u);
-      std::fill(fb->depthPlane().begin(), fb->depthPlane().end(), 0.25f);
-      std::fill(fb->countPlane().begin(), fb->countPlane().end(), 7u);
-    }
-    const glm::vec4 color(0.1f, 0.7f, 0.3f, 1.0f);
-    serial.clear(color, 0.75f);
-    ExecutionOptions exec;
-    exec.threads = threads;
-    clearFramebuffer(parallel, color, 0.75f, exec);
-    EXPECT_EQ(parallel.colorPlane(), serial.colorPlane()) << threads << " threads";
-    EXPECT_EQ(parallel.depthPlane(), serial.depthPlane()) << threads << " threads";
-    EXPECT_EQ(parallel.countPlane(), serial.countPlane()) << threads << " threads";
-    EXPECT_EQ(parallel.colorPlane().back(), packColor(color));
-    EXPECT_EQ(parallel.depthPlane().back(), 0.75f);
-  }
-}
-
 // ---------------------------------------------------------------------------------------------
 // Determinism: the same draw twice gives the same bits and the same counters.
 
