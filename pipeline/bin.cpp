@@ -30,33 +30,10 @@ std::span<const uint32_t> TileBins::entries(int tile, std::vector<uint32_t>& scr
 
 namespace {
 
-// classifyTile's corner test over a rectangle of `colsPixels` x `rowsPixels` pixels whose top-left
-// pixel is (px, py): per edge, the largest and smallest values over its (reach-widened) sample
-// positions are E at the top-left sample corner plus these constants.
-struct RectExtremes {
-  std::array<int64_t, 3> corner, highest, lowest;
-};
-
-RectExtremes rectExtremes(const std::array<EdgeFunction, 3>& edges, FixedPointFormat format,
-                          int32_t reach, int px, int py, int colsPixels, int rowsPixels) {
-  const int64_t spanX = (int64_t(colsPixels - 1) << format.fractionBits) + 2 * int64_t(reach);
-  const int64_t spanY = (int64_t(rowsPixels - 1) << format.fractionBits) + 2 * int64_t(reach);
-  const int64_t sx = pixelCentreSubpixels(px, format) - reach;
-  const int64_t sy = pixelCentreSubpixels(py, format) - reach;
-  RectExtremes r;
-  for (int i = 0; i < 3; ++i) {
-    const int64_t ax = int64_t{edges[i].a} * spanX, by = int64_t{edges[i].b} * spanY;
-    r.corner[i] = edges[i].at(sx, sy);
-    r.highest[i] = std::max<int64_t>(ax, 0) + std::max<int64_t>(by, 0);
-    r.lowest[i] = std::min<int64_t>(ax, 0) + std::min<int64_t>(by, 0);
-  }
-  return r;
-}
-
-// The tile rectangle [tx0, tx1] x [ty0, ty1] (inclusive) lies within `bounds`.
-bool withinBounds(const PixelRect& bounds, int tx0, int tx1, int ty0, int ty1) {
-  return tx0 * kTileSize >= bounds.x0 && (tx1 + 1) * kTileSize <= bounds.x1 &&
-         ty0 * kTileSize >= bounds.y0 && (ty1 + 1) * kTileSize <= bounds.y1;
+// Tile (tx, ty) lies within `bounds`.
+bool tileWithinBounds(const PixelRect& bounds, int tx, int ty) {
+  return tx * kTileSize >= bounds.x0 && (tx + 1) * kTileSize <= bounds.x1 &&
+         ty * kTileSize >= bounds.y0 && (ty + 1) * kTileSize <= bounds.y1;
 }
 
 }  // namespace
@@ -67,15 +44,20 @@ bool withinBounds(const PixelRect& bounds, int tx0, int tx1, int ty0, int ty1) {
     uint32_t triangle, const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
     FixedPointFormat format, int32_t sampleReach, int fx0, int fx1, int fy0, int fy1,
     Part& part) const {
-  const RectExtremes tile = rectExtremes(edges, format, sampleReach, fx0 * kTileSize,
-                                         fy0 * kTileSize, kTileSize, kTileSize);
+  // classifyTile, stepped from tile to tile: E at each tile's top-left (reach-widened) sample
+  // corner, plus per edge its extent over a tile.
+  const int64_t sx0 = pixelCentreSubpixels(fx0 * kTileSize, format) - sampleReach;
+  const int64_t sy0 = pixelCentreSubpixels(fy0 * kTileSize, format) - sampleReach;
   const int64_t tileStep = int64_t(kTileSize) << format.fractionBits;
-  std::array<int64_t, 3> rowStart = tile.corner, stepX, stepY;
+  std::array<int64_t, 3> rowStart, stepX, stepY, highest, lowest;
   for (int i = 0; i < 3; ++i) {
+    rowStart[i] = edges[i].at(sx0, sy0);
     stepX[i] = int64_t{edges[i].a} * tileStep;
     stepY[i] = int64_t{edges[i].b} * tileStep;
+    const EdgeExtent extent = edgeExtent(edges[i], kTileSize, kTileSize, format, sampleReach);
+    highest[i] = extent.highest;
+    lowest[i] = extent.lowest;
   }
-  const std::array<int64_t, 3> highest = tile.highest, lowest = tile.lowest;
   for (int ty = fy0; ty <= fy1; ++ty) {
     std::array<int64_t, 3> e = rowStart;
     for (int tx = fx0; tx <= fx1; ++tx) {
@@ -85,7 +67,7 @@ bool withinBounds(const PixelRect& bounds, int tx0, int tx1, int ty0, int ty1) {
         // Inside: every edge non-negative over the tile's samples, and the tile within the
         // bounds (classifyTile's Inside, which coverTile would find for every sample).
         const bool whole = e[0] + lowest[0] >= 0 && e[1] + lowest[1] >= 0 &&
-                           e[2] + lowest[2] >= 0 && withinBounds(bounds, tx, tx, ty, ty);
+                           e[2] + lowest[2] >= 0 && tileWithinBounds(bounds, tx, ty);
         part.tiles.push_back(
             {uint32_t(ty * tilesX_ + tx), whole ? triangle | kWholeTileBit : triangle});
       }
@@ -139,19 +121,12 @@ void TileBins::addLargeTriangle(uint32_t triangle, const std::array<EdgeFunction
       const int coarseY1 = std::min(cy * kCoarseTiles + kCoarseTiles, tilesY_) - 1;
       const int fx0 = std::max(tx0, cx * kCoarseTiles), fx1 = std::min(tx1, coarseX1);
       const int fy0 = std::max(ty0, cy * kCoarseTiles), fy1 = std::min(ty1, coarseY1);
-      const RectExtremes rect =
-          rectExtremes(edges, format, sampleReach, fx0 * kTileSize, fy0 * kTileSize,
-                       (fx1 - fx0 + 1) * kTileSize, (fy1 - fy0 + 1) * kTileSize);
-      bool outside = false, inside = true;
-      for (int i = 0; i < 3; ++i) {
-        outside |= rect.corner[i] + rect.highest[i] < 0;
-        inside &= rect.corner[i] + rect.lowest[i] >= 0;
-      }
-      if (outside) {
+      const TileCoverage coverage =
+          classifyTiles(edges, bounds, fx0, fx1, fy0, fy1, format, sampleReach);
+      if (coverage == TileCoverage::Outside) {
         part.stats.tilesTriviallyRejected += uint64_t(fx1 - fx0 + 1) * uint64_t(fy1 - fy0 + 1);
-      } else if (inside && fx0 == cx * kCoarseTiles && fx1 == coarseX1 &&
-                 fy0 == cy * kCoarseTiles && fy1 == coarseY1 &&
-                 withinBounds(bounds, fx0, fx1, fy0, fy1)) {
+      } else if (coverage == TileCoverage::Inside && fx0 == cx * kCoarseTiles &&
+                 fx1 == coarseX1 && fy0 == cy * kCoarseTiles && fy1 == coarseY1) {
         part.coarse.push_back({uint32_t(cy * coarseX_ + cx), triangle | kWholeTileBit});
       } else {
         binTileRect(triangle, edges, bounds, format, sampleReach, fx0, fx1, fy0, fy1, part);

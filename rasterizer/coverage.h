@@ -63,4 +63,27 @@ enum class TileCoverage { Outside, Inside, Partial };
 TileCoverage classifyTile(const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
                           int tileX, int tileY, FixedPointFormat format, int32_t reach = 0);
 
+// The same test for the rectangle of tiles [tileX0, tileX1] x [tileY0, tileY1] (inclusive) as a
+// whole (binning's coarse tiles): Outside says every tile of it is Outside, Inside that every
+// tile is Inside.
+TileCoverage classifyTiles(const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
+                           int tileX0, int tileX1, int tileY0, int tileY1, FixedPointFormat format,
+                           int32_t reach = 0);
+
+// An edge's least and greatest values over the samples of a rectangle of `colsPixels` x
+// `rowsPixels` pixel centres widened by `reach`, minus its value at the rectangle's top-left
+// (widened) corner: E is linear, so they lie at corners, a sum of the positive (or negative)
+// parts of a*spanX and b*spanY.
+struct EdgeExtent {
+  int64_t lowest, highest;
+};
+inline EdgeExtent edgeExtent(const EdgeFunction& e, int colsPixels, int rowsPixels,
+                             FixedPointFormat format, int32_t reach) {
+  const int64_t spanX = (int64_t(colsPixels - 1) << format.fractionBits) + 2 * int64_t(reach);
+  const int64_t spanY = (int64_t(rowsPixels - 1) << format.fractionBits) + 2 * int64_t(reach);
+  const int64_t dx = int64_t{e.a} * spanX, dy = int64_t{e.b} * spanY;
+  return {std::min<int64_t>(dx, 0) + std::min<int64_t>(dy, 0),
+          std::max<int64_t>(dx, 0) + std::max<int64_t>(dy, 0)};
+}
+
 }  // namespace rast
