@@ -237,6 +237,28 @@ constexpr bool kTakesDerivatives = requires { requires PS::kDerivatives; };
 template <class PS>
 constexpr bool kShadesPerTriangle = requires { requires PS::kPerTriangle; };
 
+// The varyings of rows [rowBegin, rowEnd) of a tile, lane by lane: interpolateVaryings'
+// expression at each lane (dx, dy are small integers, exact in float either way), in loops over
+// eight lanes the compiler vectorises.
+template <int N>
+using TileVaryings = std::array<TileLanes<float>, N>;
+
+template <int N>
+RAST_TILE_INLINE void interpolateRows(const SetupTriangle<N>& t, int x0, int y0, int rowBegin,
+                                      int rowEnd, TileVaryings<N>& out) {
+  if constexpr (N > 0) {
+    const float dx0 = float(x0 - t.bounds.x0), dy0 = float(y0 - t.bounds.y0);
+    for (int ly = rowBegin; ly < rowEnd; ++ly) {
+      const float dy = dy0 + float(ly);
+      std::array<float, kTileSize> w;
+      for (int lx = 0; lx < kTileSize; ++lx) w[lx] = 1.0f / t.invW.at(dx0 + float(lx), dy);
+      for (int k = 0; k < N; ++k)
+        for (int lx = 0; lx < kTileSize; ++lx)
+          out[k][ly * kTileSize + lx] = t.varyingsOverW[k].at(dx0 + float(lx), dy) * w[lx];
+    }
+  }
+}
+
 // A kShadesPerTriangle shader's one run for a triangle in a tile, at pixel `bit` of the tile.
 template <PixelShader PS, int N>
 RAST_TILE_INLINE PixelResult shadeOncePerTriangle(const SetupTriangle<N>& t, int x0, int y0,
@@ -316,11 +338,14 @@ RAST_TILE_INLINE CoverageMask shadePixels(const SetupTriangle<N>& t, int x0, int
         }
       }
   } else {
+    const int rowBegin = std::countr_zero(pixels) / kTileSize;
+    const int rowEnd = (kTileLanes - 1 - std::countl_zero(pixels)) / kTileSize + 1;
+    TileVaryings<N> varyings;
+    interpolateRows<N>(t, x0, y0, rowBegin, rowEnd, varyings);
     for (CoverageMask m = pixels; m; m &= m - 1) {
       const int bit = std::countr_zero(m);
       Fragment<N> fragment;
-      interpolateVaryings<N>(t, float(x0 + bit % kTileSize - t.bounds.x0),
-                             float(y0 + bit / kTileSize - t.bounds.y0), fragment.varyings);
+      for (int k = 0; k < N; ++k) fragment.varyings[k] = varyings[k][bit];
       shadeOne(bit, fragment);
     }
   }

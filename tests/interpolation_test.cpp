@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "pipeline/draw.h"
+#include "pipeline/tile_loop.h"
 
 namespace rast {
 namespace {
@@ -314,6 +316,74 @@ TEST(InterpolationDepth, StaysInUnitRangeAtNearAndFarPlanes) {
       EXPECT_GT(atOne, 0) << format.name();
     }
   }
+}
+
+// The back end interpolates the varyings of whole rows of a tile at once (interpolateRows, in
+// loops the compiler vectorises); every lane must hold interpolateVaryings' bits at that pixel,
+// in the baseline build and in the AVX2 one, including lanes outside a triangle where 1/w is
+// extrapolated through zero (infinite or NaN values; any NaN matches any NaN).
+template <int N>
+void interpolateRowsBaseline(const SetupTriangle<N>& t, int x0, int y0, int r0, int r1,
+                             TileVaryings<N>& out) {
+  interpolateRows<N>(t, x0, y0, r0, r1, out);
+}
+template <int N>
+[[gnu::target("avx2")]] void interpolateRowsAvx2(const SetupTriangle<N>& t, int x0, int y0,
+                                                 int r0, int r1, TileVaryings<N>& out) {
+  interpolateRows<N>(t, x0, y0, r0, r1, out);
+}
+
+bool sameFloat(float a, float b) {
+  return (std::isnan(a) && std::isnan(b)) || std::bit_cast<uint32_t>(a) == std::bit_cast<uint32_t>(b);
+}
+
+TEST(InterpolationRows, EveryLaneEqualsInterpolateVaryingsBitForBit) {
+  std::mt19937 rng(0x70775);
+  std::uniform_real_distribution<float> coefficient(-4.0f, 4.0f), offset(-2000.0f, 2000.0f);
+  std::uniform_int_distribution<int> pixel(0, 4000), row(0, kTileSize - 1);
+  const bool avx2 = cpuHasAvx2BackEnd();
+  uint64_t lanes = 0, nonFinite = 0, pastZero = 0;
+  for (int iter = 0; iter < 20000; ++iter) {
+    SetupTriangle<3> t;
+    t.bounds = {pixel(rng), pixel(rng), 0, 0};
+    t.bounds.x1 = t.bounds.x0 + 64;
+    t.bounds.y1 = t.bounds.y0 + 64;
+    // 1/w small beside its slopes in a fifth of the cases, so that it crosses zero in the tile.
+    const float invWScale = iter % 5 == 0 ? 0.01f : 1.0f;
+    t.invW = {std::abs(coefficient(rng)) * invWScale, coefficient(rng) * 0.01f,
+              coefficient(rng) * 0.01f};
+    // And exactly zero everywhere now and then: every lane infinite or NaN.
+    if (iter % 97 == 0) t.invW = {0.0f, 0.0f, 0.0f};
+    for (PlaneEquation& v : t.varyingsOverW)
+      v = {offset(rng), coefficient(rng), coefficient(rng)};
+    const int x0 = t.bounds.x0 + int(rng() % 56), y0 = t.bounds.y0 + int(rng() % 56);
+    int r0 = row(rng), r1 = row(rng);
+    if (r0 > r1) std::swap(r0, r1);
+    ++r1;
+    for (int target = 0; target < (avx2 ? 2 : 1); ++target) {
+      TileVaryings<3> rows;
+      if (target == 0) interpolateRowsBaseline<3>(t, x0, y0, r0, r1, rows);
+      else interpolateRowsAvx2<3>(t, x0, y0, r0, r1, rows);
+      for (int ly = r0; ly < r1; ++ly)
+        for (int lx = 0; lx < kTileSize; ++lx) {
+          Varyings<3> expected;
+          interpolateVaryings<3>(t, float(x0 + lx - t.bounds.x0), float(y0 + ly - t.bounds.y0),
+                                 expected);
+          for (int k = 0; k < 3; ++k) {
+            const float got = rows[k][ly * kTileSize + lx];
+            ASSERT_TRUE(sameFloat(got, expected[k]))
+                << (target ? "AVX2" : "baseline") << ", iteration " << iter << ", lane (" << lx
+                << ", " << ly << ") varying " << k << ": " << got << " != " << expected[k];
+            nonFinite += !std::isfinite(got);
+            pastZero += t.invW.at(float(x0 + lx - t.bounds.x0), float(y0 + ly - t.bounds.y0)) < 0;
+            ++lanes;
+          }
+        }
+    }
+  }
+  EXPECT_GT(lanes, 1000000u);
+  EXPECT_GT(nonFinite, 0u) << "no lane where 1/w is zero: infinities and NaNs are not tested";
+  EXPECT_GT(pastZero, 0u) << "no lane where 1/w is negative: the extrapolation is not tested";
 }
 
 }  // namespace
