@@ -213,11 +213,12 @@ template <int N>
 RAST_TILE_INLINE void depthLanes(const SetupTriangle<N>& t, int x0, int y0, float offsetX, float offsetY,
                 int rowBegin, int rowEnd, TileLanes<float>& z) {
   const float dx0 = float(x0 - t.bounds.x0) + offsetX, dy0 = float(y0 - t.bounds.y0) + offsetY;
-  for (int ly = rowBegin; ly < rowEnd; ++ly)
-    for (int lx = 0; lx < kTileSize; ++lx) {
-      const float v = t.depth.at(dx0 + float(lx), dy0 + float(ly));
-      z[ly * kTileSize + lx] = v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v);
-    }
+  // One loop over the lanes of the rows, which GCC vectorises; a loop of eight per row it
+  // unrolls completely and vectorises less well (W4's back end took 7 % longer).
+  for (int lane = rowBegin * kTileSize; lane < rowEnd * kTileSize; ++lane) {
+    const float v = t.depth.at(dx0 + float(lane % kTileSize), dy0 + float(lane / kTileSize));
+    z[lane] = v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v);
+  }
 }
 
 // The depth buffer format's value of each lane (depth_format.h), rows [rowBegin, rowEnd).
@@ -238,8 +239,8 @@ template <class PS>
 constexpr bool kShadesPerTriangle = requires { requires PS::kPerTriangle; };
 
 // The varyings of rows [rowBegin, rowEnd) of a tile, lane by lane: interpolateVaryings'
-// expression at each lane (dx, dy are small integers, exact in float either way), in loops over
-// eight lanes the compiler vectorises.
+// expression at each lane (dx, dy are small integers, exact in float either way), in one loop
+// over the lanes of the rows that the compiler vectorises (as depthLanes).
 template <int N>
 using TileVaryings = std::array<TileLanes<float>, N>;
 
@@ -248,13 +249,10 @@ RAST_TILE_INLINE void interpolateRows(const SetupTriangle<N>& t, int x0, int y0,
                                       int rowEnd, TileVaryings<N>& out) {
   if constexpr (N > 0) {
     const float dx0 = float(x0 - t.bounds.x0), dy0 = float(y0 - t.bounds.y0);
-    for (int ly = rowBegin; ly < rowEnd; ++ly) {
-      const float dy = dy0 + float(ly);
-      std::array<float, kTileSize> w;
-      for (int lx = 0; lx < kTileSize; ++lx) w[lx] = 1.0f / t.invW.at(dx0 + float(lx), dy);
-      for (int k = 0; k < N; ++k)
-        for (int lx = 0; lx < kTileSize; ++lx)
-          out[k][ly * kTileSize + lx] = t.varyingsOverW[k].at(dx0 + float(lx), dy) * w[lx];
+    for (int lane = rowBegin * kTileSize; lane < rowEnd * kTileSize; ++lane) {
+      const float dx = dx0 + float(lane % kTileSize), dy = dy0 + float(lane / kTileSize);
+      const float w = 1.0f / t.invW.at(dx, dy);
+      for (int k = 0; k < N; ++k) out[k][lane] = t.varyingsOverW[k].at(dx, dy) * w;
     }
   }
 }
