@@ -207,18 +207,16 @@ struct BackEndConfig {
   int width = 0, height = 0;
 };
 
-// Depth of the triangle at 64 lanes of sample s: the same expression, in the same order, as
-// interpolateDepth, so the per-sample and per-pixel paths agree bit for bit.
+// Depth of the triangle at the lanes of rows [rowBegin, rowEnd) of sample s: interpolateDepth at
+// each, so the per-sample and per-pixel paths agree bit for bit.
 template <int N>
 RAST_TILE_INLINE void depthLanes(const SetupTriangle<N>& t, int x0, int y0, float offsetX, float offsetY,
                 int rowBegin, int rowEnd, TileLanes<float>& z) {
   const float dx0 = float(x0 - t.bounds.x0) + offsetX, dy0 = float(y0 - t.bounds.y0) + offsetY;
   // One loop over the lanes of the rows, which GCC vectorises; a loop of eight per row it
   // unrolls completely and vectorises less well (W4's back end took 7 % longer).
-  for (int lane = rowBegin * kTileSize; lane < rowEnd * kTileSize; ++lane) {
-    const float v = t.depth.at(dx0 + float(lane % kTileSize), dy0 + float(lane / kTileSize));
-    z[lane] = v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v);
-  }
+  for (int lane = rowBegin * kTileSize; lane < rowEnd * kTileSize; ++lane)
+    z[lane] = interpolateDepth(t, dx0 + float(lane % kTileSize), dy0 + float(lane / kTileSize));
 }
 
 // The depth buffer format's value of each lane (depth_format.h), rows [rowBegin, rowEnd).
@@ -238,9 +236,18 @@ constexpr bool kTakesDerivatives = requires { requires PS::kDerivatives; };
 template <class PS>
 constexpr bool kShadesPerTriangle = requires { requires PS::kPerTriangle; };
 
-// The varyings of rows [rowBegin, rowEnd) of a tile, lane by lane: interpolateVaryings'
-// expression at each lane (dx, dy are small integers, exact in float either way), in one loop
-// over the lanes of the rows that the compiler vectorises (as depthLanes).
+// The rows [begin, end) of a tile that a non-empty mask touches.
+struct RowRange {
+  int begin, end;
+};
+RAST_TILE_INLINE RowRange coveredRows(CoverageMask mask) {
+  return {std::countr_zero(mask) / kTileSize,
+          (kTileLanes - 1 - std::countl_zero(mask)) / kTileSize + 1};
+}
+
+// The varyings of rows [rowBegin, rowEnd) of a tile, lane by lane: interpolateVaryings at each
+// lane (dx, dy are small integers, exact in float either way), in one loop over the lanes of the
+// rows that the compiler vectorises (as depthLanes).
 template <int N>
 using TileVaryings = std::array<TileLanes<float>, N>;
 
@@ -250,9 +257,9 @@ RAST_TILE_INLINE void interpolateRows(const SetupTriangle<N>& t, int x0, int y0,
   if constexpr (N > 0) {
     const float dx0 = float(x0 - t.bounds.x0), dy0 = float(y0 - t.bounds.y0);
     for (int lane = rowBegin * kTileSize; lane < rowEnd * kTileSize; ++lane) {
-      const float dx = dx0 + float(lane % kTileSize), dy = dy0 + float(lane / kTileSize);
-      const float w = 1.0f / t.invW.at(dx, dy);
-      for (int k = 0; k < N; ++k) out[k][lane] = t.varyingsOverW[k].at(dx, dy) * w;
+      Varyings<N> v;
+      interpolateVaryings<N>(t, dx0 + float(lane % kTileSize), dy0 + float(lane / kTileSize), v);
+      for (int k = 0; k < N; ++k) out[k][lane] = v[k];
     }
   }
 }
@@ -336,10 +343,9 @@ RAST_TILE_INLINE CoverageMask shadePixels(const SetupTriangle<N>& t, int x0, int
         }
       }
   } else {
-    const int rowBegin = std::countr_zero(pixels) / kTileSize;
-    const int rowEnd = (kTileLanes - 1 - std::countl_zero(pixels)) / kTileSize + 1;
+    const RowRange rows = coveredRows(pixels);
     TileVaryings<N> varyings;
-    interpolateRows<N>(t, x0, y0, rowBegin, rowEnd, varyings);
+    interpolateRows<N>(t, x0, y0, rows.begin, rows.end, varyings);
     for (CoverageMask m = pixels; m; m &= m - 1) {
       const int bit = std::countr_zero(m);
       Fragment<N> fragment;
@@ -575,8 +581,7 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
     writePending();
 
     // Rows the triangle covers here: small triangles touch few, and only those are evaluated.
-    const int rowBegin = std::countr_zero(anySample) / kTileSize;
-    const int rowEnd = (kTileLanes - 1 - std::countl_zero(anySample)) / kTileSize + 1;
+    const auto [rowBegin, rowEnd] = coveredRows(anySample);
     if (depthUsed)
       for (int s = 0; s < S; ++s) {
         depthLanes(t, x0, y0, cfg.samples.offsetXPixels(s), cfg.samples.offsetYPixels(s),

@@ -143,9 +143,8 @@ TileCoverageResult coverTile(const CoverageKernel& kernel,
   bool needsWide = false;
   for (const EdgeFunction& e : edges) {
     const int64_t e00 = e.at(sx0, sy0), dx = int64_t{e.a} * step, dy = int64_t{e.b} * step;
-    const int64_t spanX = (kTileSize - 1) * dx, spanY = (kTileSize - 1) * dy;
-    const int64_t lo = e00 + std::min<int64_t>(spanX, 0) + std::min<int64_t>(spanY, 0);
-    const int64_t hi = e00 + std::max<int64_t>(spanX, 0) + std::max<int64_t>(spanY, 0);
+    const EdgeExtent extent = edgeExtent(e, kTileSize, kTileSize, format, 0);
+    const int64_t lo = e00 + extent.lowest, hi = e00 + extent.highest;
     if (hi < 0) return {0, TileCoverage::Outside};
     if (lo >= 0) continue;
     if (hi - lo >= (int64_t{1} << 31)) {
