@@ -581,7 +581,10 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
     writePending();
 
     // Rows the triangle covers here: small triangles touch few, and only those are evaluated.
-    const auto [rowBegin, rowEnd] = coveredRows(anySample);
+    // Plain ints, not a structured binding: lambdas below use them, and clang (the fuzzer
+    // build) does not let a lambda capture a binding.
+    const RowRange touched = coveredRows(anySample);
+    const int rowBegin = touched.begin, rowEnd = touched.end;
     if (depthUsed)
       for (int s = 0; s < S; ++s) {
         depthLanes(t, x0, y0, cfg.samples.offsetXPixels(s), cfg.samples.offsetYPixels(s),
