@@ -145,9 +145,10 @@ inline bool allPass(CompareOp op, float triMin, float triMax, const TileDepthBou
 // Eight bytes of 0 or 1 (lane j in byte j) to eight mask bits (lane j in bit j): the multiply
 // gathers byte j's bit into bit 56 + j; no partial sum reaches the next byte (the largest, at
 // byte 6, is 2 + 4 + ... + 128 = 254).
-RAST_TILE_INLINE uint64_t packLaneBytes(const uint8_t* lanes) {
+// Rows [rowBegin, rowEnd) only.
+RAST_TILE_INLINE uint64_t packLaneBytes(const uint8_t* lanes, int rowBegin, int rowEnd) {
   CoverageMask mask = 0;
-  for (int row = 0; row < kTileSize; ++row) {
+  for (int row = rowBegin; row < rowEnd; ++row) {
     uint64_t bytes;
     std::memcpy(&bytes, lanes + kTileSize * row, sizeof bytes);
     mask |= (((bytes & 0x0101010101010101ull) * 0x0102040810204080ull) >> 56) << (kTileSize * row);
@@ -161,10 +162,11 @@ RAST_TILE_INLINE uint64_t packLaneBytes(const uint8_t* lanes) {
 template <CompareOp Op>
 RAST_TILE_INLINE CoverageMask depthTestLanes(const TileLanes<float>& z, const TileLanes<float>& stored,
                             CoverageMask mask, int rowBegin, int rowEnd) {
-  alignas(64) uint8_t pass[kTileLanes] = {};
+  // Rows outside [rowBegin, rowEnd) are neither written nor read.
+  alignas(64) uint8_t pass[kTileLanes];
   for (int i = rowBegin * kTileSize; i < rowEnd * kTileSize; ++i)
     pass[i] = depthPasses<Op>(z[i], stored[i]) ? 1 : 0;
-  return packLaneBytes(pass) & mask;
+  return packLaneBytes(pass, rowBegin, rowEnd) & mask;
 }
 
 // The same tests by a switch, so that the tile loop inlines them (and compiles them for its target).
