@@ -15,6 +15,8 @@
 
 namespace rast {
 
+inline constexpr uint32_t kSetupPrefetchDistance = 8;
+
 // Clips and sets up triangles [begin, end) of the draw, appending to `out` in order.
 template <int N>
 void clipAndSetup(const TransformedVertices<N>& in, const ScratchVector<VertexClipCodes>& codes,
@@ -37,6 +39,14 @@ void clipAndSetup(const TransformedVertices<N>& in, const ScratchVector<VertexCl
     }
   };
   for (uint32_t t = begin; t < end; ++t) {
+    // A mesh's indices jump about its vertices: fetching a later triangle's vertices and codes
+    // while this one is set up hides the misses that setup, one triangle at a time, would wait on.
+    if (t + kSetupPrefetchDistance < end)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t i = in.indices[3 * (t + kSetupPrefetchDistance) + k];
+        __builtin_prefetch(&in.vertices[i]);
+        __builtin_prefetch(&codes[i]);
+      }
     const uint32_t i0 = in.indices[3 * t], i1 = in.indices[3 * t + 1], i2 = in.indices[3 * t + 2];
     const VertexClipCodes &c0 = codes[i0], &c1 = codes[i1], &c2 = codes[i2];
     if (!c0.finite || !c1.finite || !c2.finite) {
