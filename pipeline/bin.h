@@ -54,6 +54,7 @@ class TileBins {
   // The triangles binned to `tile`, in submission order: its tile entries and its coarse tile's
   // entries, merged (in `scratch` when both have some).
   std::span<const uint32_t> entries(int tile, std::vector<uint32_t>& scratch) const;
+  // No triangle binned to `tile`, at either level.
   bool empty(int tile) const { return tileBin(tile).empty() && coarseBin(tile).empty(); }
 
   // Bins every triangle of `chunks` (a range of ranges of objects with `edges` and `bounds`),

@@ -207,6 +207,9 @@ struct BackEndConfig {
   // Framebuffer planes (sample-major) and size.
   MergeTarget target;
   int width = 0, height = 0;
+
+  bool depthRead() const { return compare != CompareOp::Always; }
+  bool depthUsed() const { return depthRead() || depthWrite; }
 };
 
 // Depth of the triangle at the lanes of rows [rowBegin, rowEnd) of sample s: interpolateDepth at
@@ -393,8 +396,8 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
   const int x0 = tileX * kTileSize, y0 = tileY * kTileSize;
   const int cols = std::min(kTileSize, cfg.width - x0), rows = std::min(kTileSize, cfg.height - y0);
   const size_t planeSize = size_t(cfg.width) * size_t(cfg.height);
-  const bool depthRead = cfg.compare != CompareOp::Always;
-  const bool depthUsed = depthRead || cfg.depthWrite;
+  const bool depthRead = cfg.depthRead();
+  const bool depthUsed = cfg.depthUsed();
   const bool counting = cfg.target.counts != nullptr;
   const MergeTarget& target = cfg.target;
 
@@ -694,37 +697,35 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
   if (countsDirty) store(target.counts, tile.counts);
 }
 
-// Tiles [begin, end) in order, for the baseline x86-64 target and for AVX2 (with BMI, LZCNT and
-// POPCNT: the mask arithmetic gets its instructions). The two are the same source with every
-// helper inlined, so the same operations in the same order: -ffp-contract=off keeps FMA out of
-// the AVX2 one, and every float operation here is IEEE-exact on both, so their bits are equal
-// (tests/tile_shortcuts_test.cpp compares them).
 // The framebuffer rows a tile's load will read. Its rows lie a framebuffer width apart, a stride
 // the hardware prefetcher does not follow from one tile to the next, so the back end asks for the
 // next tile's while it works on this one.
-RAST_TILE_INLINE void prefetchTileRows(const BackEndConfig& cfg, int tileX, int tileY,
-                                       bool depthUsed) {
+RAST_TILE_INLINE void prefetchTileRows(const BackEndConfig& cfg, int tileX, int tileY) {
   const int x0 = tileX * kTileSize, y0 = tileY * kTileSize;
   const int rows = std::min(kTileSize, cfg.height - y0);
   const size_t planeSize = size_t(cfg.width) * size_t(cfg.height);
   for (int s = 0; s < cfg.samples.count; ++s)
     for (int ly = 0; ly < rows; ++ly) {
       const size_t offset = s * planeSize + size_t(y0 + ly) * size_t(cfg.width) + size_t(x0);
-      if (depthUsed) __builtin_prefetch(cfg.target.depth + offset);
+      if (cfg.depthUsed()) __builtin_prefetch(cfg.target.depth + offset);
       if (cfg.colorWrite) __builtin_prefetch(cfg.target.color + offset);
     }
 }
 
+// Tiles [begin, end) in order, for the baseline x86-64 target and for AVX2 (with BMI, LZCNT and
+// POPCNT: the mask arithmetic gets its instructions). The two are the same source with every
+// helper inlined, so the same operations in the same order: -ffp-contract=off keeps FMA out of
+// the AVX2 one, and every float operation here is IEEE-exact on both, so their bits are equal
+// (tests/tile_shortcuts_test.cpp compares them).
 template <PixelShader PS, int N>
 RAST_TILE_INLINE void rasterizeTileRange(int begin, int end, const TileBins& bins,
                                          const SetupTriangles<N>& triangles, const PS& shader,
                                          const BackEndConfig& cfg, TileBuffer& buffer,
                                          PipelineStatistics& stats) {
-  const bool depthUsed = cfg.compare != CompareOp::Always || cfg.depthWrite;
   for (int tile = begin; tile != end; ++tile) {
     const int next = tile + 1;
     if (next < bins.tileCount() && !bins.empty(next))
-      prefetchTileRows(cfg, next % bins.tilesX(), next / bins.tilesX(), depthUsed);
+      prefetchTileRows(cfg, next % bins.tilesX(), next / bins.tilesX());
     rasterizeTile<PS, N>(tile % bins.tilesX(), tile / bins.tilesX(),
                          bins.entries(tile, buffer.mergedEntries), triangles, shader, cfg, buffer,
                          stats);
