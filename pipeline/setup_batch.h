@@ -1,0 +1,189 @@
+// Setup of unclipped triangles several at a time, for fixed-point rasterization.
+//
+// Setup one triangle at a time is bound by its instruction count (W2 tiny-1: about 45 ns a
+// triangle, and neither overlapping several triangles' steps nor an AVX2 build of the scalar code
+// made it faster). A batch holds the corners of up to kSetupLanes triangles a column per
+// coordinate, and runs the floating-point steps (window position, snapping, the planes) as loops
+// over the triangles, which the compiler vectorises: in a build for the x86-64 baseline and one
+// for AVX2, chosen at run time as the clip codes are. The integer steps (edge functions, fill
+// rule, bounds) run over the lanes as well, in 32- and 64-bit integers.
+//
+// Same bits and counters as setupTriangle (setup.h): each lane does setupTriangle's IEEE
+// operations in the same order (no FMA: -ffp-contract=off), and a non-finite corner makes its
+// triangle take setupTriangle's early exit. tests/setup_batch_test.cpp compares them.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "pipeline/execution.h"
+#include "pipeline/setup.h"
+
+namespace rast {
+namespace detail {
+
+inline constexpr int kSetupLanes = 16;
+
+// Window position and snapping of a batch. In: `p`, the corners' positions (double of the
+// vertex's float). Out: window depth and 1/w, the snapped corners and, per lane, whether every
+// value is finite (a lane that is not has zero snapped corners).
+struct SetupCorners {
+  alignas(64) double p[3][4][kSetupLanes];  // corner, coordinate (x, y, z, w), lane
+  alignas(64) double z[3][kSetupLanes];
+  alignas(64) double invW[3][kSetupLanes];
+  alignas(64) int32_t x[3][kSetupLanes];  // subpixels
+  alignas(64) int32_t y[3][kSetupLanes];
+  alignas(64) int64_t finite[kSetupLanes];  // 0 or 1
+};
+
+struct SetupCornersConstants {
+  double scale[3], offset[3];
+  double subpixelsPerPixel, guardBand;  // guardBand: FixedPointFormat::guardBandSubpixels
+};
+
+void windowAndSnap(const SetupCornersConstants& k, int lanes, SetupCorners& c, bool avx2);
+
+// setupCoverage (rasterizer/triangle_setup.cpp) of each lane's snapped corners, in integers.
+struct SetupCoverageLanes {
+  alignas(64) int32_t outcome[kSetupLanes];    // SetupOutcome
+  alignas(64) int32_t clockwise[kSetupLanes];  // 0 or 1
+  alignas(64) int32_t a[3][kSetupLanes];       // EdgeFunction of edge e
+  alignas(64) int32_t b[3][kSetupLanes];
+  alignas(64) int64_t c[3][kSetupLanes];
+  alignas(64) int32_t x0[kSetupLanes];  // PixelRect
+  alignas(64) int32_t y0[kSetupLanes];
+  alignas(64) int32_t x1[kSetupLanes];
+  alignas(64) int32_t y1[kSetupLanes];
+};
+struct SetupCoverageConstants {
+  PixelRect clip;
+  int fractionBits;
+  FillRule rule;
+  int32_t sampleReach;
+};
+void coverageLanes(const SetupCoverageConstants& k, const SetupCorners& c, int lanes,
+                   SetupCoverageLanes& out, bool avx2);
+
+// The planes through each lane's snapped corners, for one attribute: `value[corner][lane]`.
+struct SetupPlaneInputs {
+  alignas(64) double x[3][kSetupLanes];  // corners in pixels
+  alignas(64) double y[3][kSetupLanes];
+  alignas(64) double inverseDoubleArea[kSetupLanes];
+};
+struct SetupPlanes {
+  alignas(64) float at0[kSetupLanes];
+  alignas(64) float ddx[kSetupLanes];
+  alignas(64) float ddy[kSetupLanes];
+};
+
+// x, y from the snapped corners, and 1 / twice the area (inverseDoubleArea).
+void planeGeometry(const SetupCorners& c, double pixelsPerSubpixel, int lanes,
+                   SetupPlaneInputs& out, bool avx2);
+// Anchored at the origin of each lane's bounds (coverageLanes).
+void planesThrough(const SetupPlaneInputs& in, const SetupCoverageLanes& bounds,
+                   const double (&value)[3][kSetupLanes], int lanes, SetupPlanes& out, bool avx2);
+
+bool cpuHasAvx2();  // clip_codes.cpp
+
+}  // namespace detail
+
+template <int N>
+class SetupBatch {
+ public:
+  static constexpr int kCapacity = detail::kSetupLanes;
+
+  // `avx2`: run the vector steps in their AVX2 build (the CPU must have it); the same bits.
+  SetupBatch(const SetupContext& ctx, bool avx2) : ctx_(ctx), avx2_(avx2) {
+    for (int a = 0; a < 3; ++a) {
+      constants_.scale[a] = ctx.mapping.scale[a];
+      constants_.offset[a] = ctx.mapping.offset[a];
+    }
+    constants_.subpixelsPerPixel = double(ctx.format.subpixelsPerPixel());
+    constants_.guardBand = double(ctx.format.guardBandSubpixels());
+    coverageConstants_ = {ctx.clipRect, ctx.format.fractionBits, ctx.fillRule, ctx.sampleReach};
+  }
+
+  bool full() const { return count_ == kCapacity; }
+
+  void add(const std::array<const ShadedVertex<N>*, 3>& v, uint32_t primitiveId) {
+    for (int i = 0; i < 3; ++i)
+      for (int c = 0; c < 4; ++c) corners_.p[i][c][count_] = double(v[i]->position[c]);
+    vertices_[count_] = v;
+    primitiveIds_[count_] = primitiveId;
+    ++count_;
+  }
+
+  // Sets up the batch's triangles, appends those drawn to `out` in the order they were added,
+  // counts them as setupTriangle does, and empties the batch.
+  void flush(ScratchVector<SetupTriangle<N>>& out, PipelineStatistics& stats) {
+    const int n = count_;
+    if (n == 0) return;
+    count_ = 0;
+    detail::windowAndSnap(constants_, n, corners_, avx2_);
+
+    detail::coverageLanes(coverageConstants_, corners_, n, coverage_, avx2_);
+
+    std::array<bool, kCapacity> drawn, front;
+    for (int l = 0; l < n; ++l) {
+      drawn[l] = false;
+      if (!corners_.finite[l]) {
+        ++stats.clipDegenerate;
+        continue;
+      }
+      drawn[l] = acceptCoverage(SetupOutcome(coverage_.outcome[l]), coverage_.clockwise[l] != 0,
+                                ctx_, stats, front[l]);
+    }
+
+    // Planes for every lane (those not drawn give values nobody reads).
+    const double pixelsPerSubpixel = subpixelsToPixels(1, ctx_.format);
+    detail::planeGeometry(corners_, pixelsPerSubpixel, n, planeInputs_, avx2_);
+    detail::planesThrough(planeInputs_, coverage_, corners_.z, n, depth_, avx2_);
+    if constexpr (N > 0) {
+      detail::planesThrough(planeInputs_, coverage_, corners_.invW, n, invW_, avx2_);
+      for (int k = 0; k < N; ++k) {
+        for (int i = 0; i < 3; ++i)
+          for (int l = 0; l < n; ++l)
+            overW_[i][l] = double(vertices_[l][i]->varyings[k]) * corners_.invW[i][l];
+        detail::planesThrough(planeInputs_, coverage_, overW_, n, varyings_[k], avx2_);
+      }
+    }
+
+    for (int l = 0; l < n; ++l) {
+      if (!drawn[l]) continue;
+      SetupTriangle<N>& t = out.emplace_back();
+      for (int e = 0; e < 3; ++e)
+        t.edges[e] = {coverage_.a[e][l], coverage_.b[e][l], coverage_.c[e][l]};
+      t.bounds = {coverage_.x0[l], coverage_.y0[l], coverage_.x1[l], coverage_.y1[l]};
+      t.primitiveId = primitiveIds_[l];
+      t.frontFacing = front[l];
+      t.depth = plane(depth_, l);
+      if constexpr (N > 0) {
+        t.invW = plane(invW_, l);
+        for (int k = 0; k < N; ++k) t.varyingsOverW[k] = plane(varyings_[k], l);
+      }
+      ++stats.setupTriangles;
+    }
+  }
+
+ private:
+  static PlaneEquation plane(const detail::SetupPlanes& p, int lane) {
+    return {p.at0[lane], p.ddx[lane], p.ddy[lane]};
+  }
+
+  SetupContext ctx_;
+  bool avx2_;
+  detail::SetupCornersConstants constants_;
+  detail::SetupCoverageConstants coverageConstants_;
+  detail::SetupCoverageLanes coverage_;
+  int count_ = 0;
+  detail::SetupCorners corners_;
+  detail::SetupPlaneInputs planeInputs_;
+  detail::SetupPlanes depth_;
+  [[no_unique_address]] std::conditional_t<(N > 0), detail::SetupPlanes, NoPlane> invW_;
+  std::array<detail::SetupPlanes, N> varyings_;
+  alignas(64) double overW_[3][detail::kSetupLanes];
+  std::array<std::array<const ShadedVertex<N>*, 3>, kCapacity> vertices_;
+  std::array<uint32_t, kCapacity> primitiveIds_;
+};
+
+}  // namespace rast
