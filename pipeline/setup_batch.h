@@ -13,6 +13,7 @@
 // triangle take setupTriangle's early exit. tests/setup_batch_test.cpp compares them.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 
@@ -119,6 +120,14 @@ class SetupBatch {
     const int n = count_;
     if (n == 0) return;
     count_ = 0;
+    // The triangles' slots in `out` are rarely in cache (W2 tiny-1 writes 180 MB of them a
+    // frame), and the first store to each waits on its line: the next batch's slots are fetched
+    // for writing now, to arrive while this batch computes (W1 and W4 setup 0.9x; W2 1.01x).
+    const size_t ahead = std::min(out.capacity() - out.size(), size_t(2 * kCapacity));
+    const auto* slots = reinterpret_cast<const char*>(out.data() + out.size());
+    for (size_t b = kCapacity * sizeof(SetupTriangle<N>); b < ahead * sizeof(SetupTriangle<N>);
+         b += 64)
+      __builtin_prefetch(slots + b, 1);
     detail::windowAndSnap(constants_, n, corners_, avx2_);
 
     detail::coverageLanes(coverageConstants_, corners_, n, coverage_, avx2_);
