@@ -167,13 +167,13 @@ void BM_SetupTriangle(benchmark::State& state) {
 BENCHMARK(BM_SetupTriangle)->Arg(4)->Arg(8)->Unit(benchmark::kMicrosecond);
 
 // The same triangles through SetupBatch (pipeline/setup_batch.h), which the front end uses for
-// unclipped triangles in fixed-point mode: arg 1 is 0 for the baseline build of its loops, 1 for
-// AVX2. Compare with BM_SetupTriangle at the same precision.
+// unclipped triangles in fixed-point mode: arg 1 picks the build of its loops (0 baseline,
+// 1 AVX2, 2 AVX-512). Compare with BM_SetupTriangle at the same precision.
 void BM_SetupBatch(benchmark::State& state) {
   const FixedPointFormat f = FixedPointFormat::withFractionBits(int(state.range(0)));
-  const bool avx2 = state.range(1) != 0;
-  if (avx2 && !detail::cpuHasAvx2()) {
-    state.SkipWithError("no AVX2");
+  const auto isa = detail::SetupIsa(state.range(1));
+  if (isa > detail::bestSetupIsa()) {
+    state.SkipWithError("not supported by this CPU");
     return;
   }
   const std::vector<ShadedVertex<3>> v = randomTriangles(10000, 50, 1);
@@ -183,7 +183,7 @@ void BM_SetupBatch(benchmark::State& state) {
   PipelineStatistics stats;
   for (auto _ : state) {
     out.clear();
-    SetupBatch<3> batch(ctx, avx2);
+    SetupBatch<3> batch(ctx, isa);
     for (size_t i = 0; i < v.size(); i += 3) {
       batch.add({&v[i], &v[i + 1], &v[i + 2]}, 0);
       if (batch.full()) batch.flush(out, stats);
@@ -191,10 +191,10 @@ void BM_SetupBatch(benchmark::State& state) {
     batch.flush(out, stats);
     benchmark::DoNotOptimize(out.data());
   }
-  state.SetLabel(f.name() + (avx2 ? " AVX2" : " baseline"));
+  state.SetLabel(f.name() + " " + detail::setupIsaName(isa));
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(v.size() / 3));
 }
-BENCHMARK(BM_SetupBatch)->ArgsProduct({{4, 8}, {0, 1}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SetupBatch)->ArgsProduct({{4, 8}, {0, 1, 2}})->Unit(benchmark::kMicrosecond);
 
 void BM_BinSmallTriangles(benchmark::State& state) {
   const std::vector<SetupTriangle<3>> tris =

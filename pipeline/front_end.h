@@ -21,7 +21,8 @@ template <int N>
 void clipAndSetup(const TransformedVertices<N>& in, const ScratchVector<VertexClipCodes>& codes,
                   uint32_t begin, uint32_t end, const SetupContext& ctx,
                   const ClipPlanes& planes, ScratchVector<SetupTriangle<N>>& out,
-                  ScratchVector<FloatEdges>* floatOut, PipelineStatistics& stats) {
+                  ScratchVector<FloatEdges>* floatOut, detail::SetupIsa isa,
+                  PipelineStatistics& stats) {
   stats.inputTriangles += end - begin;
   out.reserve(out.size() + (end - begin));
   if (floatOut) floatOut->reserve(floatOut->size() + (end - begin));
@@ -29,7 +30,7 @@ void clipAndSetup(const TransformedVertices<N>& in, const ScratchVector<VertexCl
   FloatEdges floatEdges;
   // Unclipped triangles in fixed-point mode are set up several at a time (setup_batch.h); float
   // mode and clipped triangles one at a time.
-  SetupBatch<N> batch(ctx, detail::cpuHasAvx2());
+  SetupBatch<N> batch(ctx, isa);
   // Set up in place in `out`, and taken back when the triangle draws nothing: no copy of each
   // triangle through the stack (1-2 % of setup on W1 and W2).
   auto setUp = [&](const auto& vertices, uint32_t primitiveId) {
@@ -125,6 +126,7 @@ template <int N>
 void clipAndSetupAll(const TransformedVertices<N>& in, const SetupContext& ctx,
                      const ClipPlanes& planes, SetupTriangles<N>& out, PipelineStatistics& stats) {
   const ScratchVector<VertexClipCodes> codes = computeClipCodes(in.vertices, planes);
+  const detail::SetupIsa isa = detail::bestSetupIsa();
   constexpr size_t kChunk = SetupTriangles<N>::kInputChunk;
   const size_t triangleCount = in.indices.size() / 3;
   const size_t chunks = chunkCount(triangleCount, kChunk);
@@ -135,7 +137,7 @@ void clipAndSetupAll(const TransformedVertices<N>& in, const SetupContext& ctx,
   std::vector<PipelineStatistics> partStats(chunks);
   forEachChunk(triangleCount, kChunk, [&](size_t c, size_t begin, size_t end) {
     clipAndSetup(in, codes, uint32_t(begin), uint32_t(end), ctx, planes, out.chunks[c],
-                 floatMode ? &out.floatChunks[c] : nullptr, partStats[c]);
+                 floatMode ? &out.floatChunks[c] : nullptr, isa, partStats[c]);
   });
   for (const PipelineStatistics& s : partStats) stats += s;
 }

@@ -6,6 +6,10 @@
 namespace rast::detail {
 namespace {
 
+// The AVX-512 build: F for the doubles, DQ for the 64-bit products and conversions, VL and BW
+// for the narrower vectors of the 32-bit values.
+#define RAST_SETUP_AVX512 "avx512f,avx512dq,avx512vl,avx512bw"
+
 // Each loop runs over the lanes with setupTriangle's operations on one lane's values, in its
 // order; the compiler vectorises them (no FMA: -ffp-contract=off).
 
@@ -22,9 +26,9 @@ namespace {
       wy[l] = c.p[i][1][l] * invW * k.scale[1] + k.offset[1];
       c.z[i][l] = c.p[i][2][l] * invW * k.scale[2] + k.offset[2];
       c.invW[i][l] = invW;
-      const bool finite = (std::abs(wx[l]) <= DBL_MAX) & (std::abs(wy[l]) <= DBL_MAX) &
-                          (std::abs(c.z[i][l]) <= DBL_MAX) & (std::abs(invW) <= DBL_MAX);
-      c.finite[l] &= int64_t(finite);
+      // (&, not &&: no branch per value, so the loop vectorises.)
+      c.finite[l] &= int64_t(std::abs(wx[l]) <= DBL_MAX) & int64_t(std::abs(wy[l]) <= DBL_MAX) &
+                     int64_t(std::abs(c.z[i][l]) <= DBL_MAX) & int64_t(std::abs(invW) <= DBL_MAX);
     }
     // snapToSubpixels. A lane that is not finite snaps zeros (its triangle is dropped) rather
     // than convert a NaN to an integer.
@@ -130,11 +134,19 @@ void windowAndSnapBaseline(const SetupCornersConstants& k, int lanes, SetupCorne
                                               SetupCorners& c) {
   windowAndSnapBody(k, lanes, c);
 }
+[[gnu::target(RAST_SETUP_AVX512)]] void windowAndSnapAvx512(const SetupCornersConstants& k, int lanes,
+                                                 SetupCorners& c) {
+  windowAndSnapBody(k, lanes, c);
+}
 void planeGeometryBaseline(const SetupCorners& c, double pps, int lanes, SetupPlaneInputs& out) {
   planeGeometryBody(c, pps, lanes, out);
 }
 [[gnu::target("avx2")]] void planeGeometryAvx2(const SetupCorners& c, double pps, int lanes,
                                               SetupPlaneInputs& out) {
+  planeGeometryBody(c, pps, lanes, out);
+}
+[[gnu::target(RAST_SETUP_AVX512)]] void planeGeometryAvx512(const SetupCorners& c, double pps, int lanes,
+                                                 SetupPlaneInputs& out) {
   planeGeometryBody(c, pps, lanes, out);
 }
 void planesThroughBaseline(const SetupPlaneInputs& in, const SetupCoverageLanes& bounds,
@@ -147,6 +159,12 @@ void planesThroughBaseline(const SetupPlaneInputs& in, const SetupCoverageLanes&
                                               SetupPlanes& out) {
   planesThroughBody(in, bounds, value, lanes, out);
 }
+[[gnu::target(RAST_SETUP_AVX512)]] void planesThroughAvx512(const SetupPlaneInputs& in,
+                                                 const SetupCoverageLanes& bounds,
+                                                 const double (&value)[3][kSetupLanes], int lanes,
+                                                 SetupPlanes& out) {
+  planesThroughBody(in, bounds, value, lanes, out);
+}
 void coverageLanesBaseline(const SetupCoverageConstants& k, const SetupCorners& c, int lanes,
                            SetupCoverageLanes& out) {
   coverageLanesBody(k, c, lanes, out);
@@ -156,30 +174,64 @@ void coverageLanesBaseline(const SetupCoverageConstants& k, const SetupCorners& 
                                               SetupCoverageLanes& out) {
   coverageLanesBody(k, c, lanes, out);
 }
+[[gnu::target(RAST_SETUP_AVX512)]] void coverageLanesAvx512(const SetupCoverageConstants& k,
+                                                 const SetupCorners& c, int lanes,
+                                                 SetupCoverageLanes& out) {
+  coverageLanesBody(k, c, lanes, out);
+}
 
 }  // namespace
 
-void windowAndSnap(const SetupCornersConstants& k, int lanes, SetupCorners& c, bool avx2) {
-  if (avx2) windowAndSnapAvx2(k, lanes, c);
-  else windowAndSnapBaseline(k, lanes, c);
+SetupIsa bestSetupIsa() {
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+      __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw"))
+    return SetupIsa::Avx512;
+  return __builtin_cpu_supports("avx2") ? SetupIsa::Avx2 : SetupIsa::Baseline;
+}
+
+const char* setupIsaName(SetupIsa isa) {
+  switch (isa) {
+    case SetupIsa::Baseline: return "baseline";
+    case SetupIsa::Avx2: return "AVX2";
+    case SetupIsa::Avx512: return "AVX-512";
+  }
+  return "?";
+}
+
+void windowAndSnap(const SetupCornersConstants& k, int lanes, SetupCorners& c, SetupIsa isa) {
+  switch (isa) {
+    case SetupIsa::Avx512: return windowAndSnapAvx512(k, lanes, c);
+    case SetupIsa::Avx2: return windowAndSnapAvx2(k, lanes, c);
+    case SetupIsa::Baseline: return windowAndSnapBaseline(k, lanes, c);
+  }
 }
 
 void planeGeometry(const SetupCorners& c, double pixelsPerSubpixel, int lanes,
-                   SetupPlaneInputs& out, bool avx2) {
-  if (avx2) planeGeometryAvx2(c, pixelsPerSubpixel, lanes, out);
-  else planeGeometryBaseline(c, pixelsPerSubpixel, lanes, out);
+                   SetupPlaneInputs& out, SetupIsa isa) {
+  switch (isa) {
+    case SetupIsa::Avx512: return planeGeometryAvx512(c, pixelsPerSubpixel, lanes, out);
+    case SetupIsa::Avx2: return planeGeometryAvx2(c, pixelsPerSubpixel, lanes, out);
+    case SetupIsa::Baseline: return planeGeometryBaseline(c, pixelsPerSubpixel, lanes, out);
+  }
 }
 
 void planesThrough(const SetupPlaneInputs& in, const SetupCoverageLanes& bounds,
-                   const double (&value)[3][kSetupLanes], int lanes, SetupPlanes& out, bool avx2) {
-  if (avx2) planesThroughAvx2(in, bounds, value, lanes, out);
-  else planesThroughBaseline(in, bounds, value, lanes, out);
+                   const double (&value)[3][kSetupLanes], int lanes, SetupPlanes& out,
+                   SetupIsa isa) {
+  switch (isa) {
+    case SetupIsa::Avx512: return planesThroughAvx512(in, bounds, value, lanes, out);
+    case SetupIsa::Avx2: return planesThroughAvx2(in, bounds, value, lanes, out);
+    case SetupIsa::Baseline: return planesThroughBaseline(in, bounds, value, lanes, out);
+  }
 }
 
 void coverageLanes(const SetupCoverageConstants& k, const SetupCorners& c, int lanes,
-                   SetupCoverageLanes& out, bool avx2) {
-  if (avx2) coverageLanesAvx2(k, c, lanes, out);
-  else coverageLanesBaseline(k, c, lanes, out);
+                   SetupCoverageLanes& out, SetupIsa isa) {
+  switch (isa) {
+    case SetupIsa::Avx512: return coverageLanesAvx512(k, c, lanes, out);
+    case SetupIsa::Avx2: return coverageLanesAvx2(k, c, lanes, out);
+    case SetupIsa::Baseline: return coverageLanesBaseline(k, c, lanes, out);
+  }
 }
 
 }  // namespace rast::detail

@@ -5,7 +5,7 @@
 // made it faster). A batch holds the corners of up to kSetupLanes triangles a column per
 // coordinate, and runs the floating-point steps (window position, snapping, the planes) as loops
 // over the triangles, which the compiler vectorises: in a build for the x86-64 baseline and one
-// for AVX2, chosen at run time as the clip codes are. The integer steps (edge functions, fill
+// for AVX2 and one for AVX-512, chosen at run time. The integer steps (edge functions, fill
 // rule, bounds) run over the lanes as well, in 32- and 64-bit integers.
 //
 // Same bits and counters as setupTriangle (setup.h): each lane does setupTriangle's IEEE
@@ -25,6 +25,12 @@ namespace detail {
 
 inline constexpr int kSetupLanes = 16;
 
+// The builds of the batch's loops: the same source and the same IEEE operations in each.
+enum class SetupIsa { Baseline, Avx2, Avx512 };
+// The best one this CPU runs.
+SetupIsa bestSetupIsa();
+const char* setupIsaName(SetupIsa isa);
+
 // Window position and snapping of a batch. In: `p`, the corners' positions (double of the
 // vertex's float). Out: window depth and 1/w, the snapped corners and, per lane, whether every
 // value is finite (a lane that is not has zero snapped corners).
@@ -42,7 +48,7 @@ struct SetupCornersConstants {
   double subpixelsPerPixel, guardBand;  // guardBand: FixedPointFormat::guardBandSubpixels
 };
 
-void windowAndSnap(const SetupCornersConstants& k, int lanes, SetupCorners& c, bool avx2);
+void windowAndSnap(const SetupCornersConstants& k, int lanes, SetupCorners& c, SetupIsa isa);
 
 // setupCoverage (rasterizer/triangle_setup.cpp) of each lane's snapped corners, in integers.
 struct SetupCoverageLanes {
@@ -63,7 +69,7 @@ struct SetupCoverageConstants {
   int32_t sampleReach;
 };
 void coverageLanes(const SetupCoverageConstants& k, const SetupCorners& c, int lanes,
-                   SetupCoverageLanes& out, bool avx2);
+                   SetupCoverageLanes& out, SetupIsa isa);
 
 // The planes through each lane's snapped corners, for one attribute: `value[corner][lane]`.
 struct SetupPlaneInputs {
@@ -79,12 +85,10 @@ struct SetupPlanes {
 
 // x, y from the snapped corners, and 1 / twice the area (inverseDoubleArea).
 void planeGeometry(const SetupCorners& c, double pixelsPerSubpixel, int lanes,
-                   SetupPlaneInputs& out, bool avx2);
+                   SetupPlaneInputs& out, SetupIsa isa);
 // Anchored at the origin of each lane's bounds (coverageLanes).
 void planesThrough(const SetupPlaneInputs& in, const SetupCoverageLanes& bounds,
-                   const double (&value)[3][kSetupLanes], int lanes, SetupPlanes& out, bool avx2);
-
-bool cpuHasAvx2();  // clip_codes.cpp
+                   const double (&value)[3][kSetupLanes], int lanes, SetupPlanes& out, SetupIsa isa);
 
 }  // namespace detail
 
@@ -93,8 +97,9 @@ class SetupBatch {
  public:
   static constexpr int kCapacity = detail::kSetupLanes;
 
-  // `avx2`: run the vector steps in their AVX2 build (the CPU must have it); the same bits.
-  SetupBatch(const SetupContext& ctx, bool avx2) : ctx_(ctx), avx2_(avx2) {
+  // `isa`: the build of the vector steps to run (the CPU must have it); every one gives the same
+  // bits.
+  SetupBatch(const SetupContext& ctx, detail::SetupIsa isa) : ctx_(ctx), isa_(isa) {
     for (int a = 0; a < 3; ++a) {
       constants_.scale[a] = ctx.mapping.scale[a];
       constants_.offset[a] = ctx.mapping.offset[a];
@@ -128,9 +133,9 @@ class SetupBatch {
     for (size_t b = kCapacity * sizeof(SetupTriangle<N>); b < ahead * sizeof(SetupTriangle<N>);
          b += 64)
       __builtin_prefetch(slots + b, 1);
-    detail::windowAndSnap(constants_, n, corners_, avx2_);
+    detail::windowAndSnap(constants_, n, corners_, isa_);
 
-    detail::coverageLanes(coverageConstants_, corners_, n, coverage_, avx2_);
+    detail::coverageLanes(coverageConstants_, corners_, n, coverage_, isa_);
 
     std::array<bool, kCapacity> drawn, front;
     for (int l = 0; l < n; ++l) {
@@ -145,15 +150,15 @@ class SetupBatch {
 
     // Planes for every lane (those not drawn give values nobody reads).
     const double pixelsPerSubpixel = subpixelsToPixels(1, ctx_.format);
-    detail::planeGeometry(corners_, pixelsPerSubpixel, n, planeInputs_, avx2_);
-    detail::planesThrough(planeInputs_, coverage_, corners_.z, n, depth_, avx2_);
+    detail::planeGeometry(corners_, pixelsPerSubpixel, n, planeInputs_, isa_);
+    detail::planesThrough(planeInputs_, coverage_, corners_.z, n, depth_, isa_);
     if constexpr (N > 0) {
-      detail::planesThrough(planeInputs_, coverage_, corners_.invW, n, invW_, avx2_);
+      detail::planesThrough(planeInputs_, coverage_, corners_.invW, n, invW_, isa_);
       for (int k = 0; k < N; ++k) {
         for (int i = 0; i < 3; ++i)
           for (int l = 0; l < n; ++l)
             overW_[i][l] = double(vertices_[l][i]->varyings[k]) * corners_.invW[i][l];
-        detail::planesThrough(planeInputs_, coverage_, overW_, n, varyings_[k], avx2_);
+        detail::planesThrough(planeInputs_, coverage_, overW_, n, varyings_[k], isa_);
       }
     }
 
@@ -180,7 +185,7 @@ class SetupBatch {
   }
 
   SetupContext ctx_;
-  bool avx2_;
+  detail::SetupIsa isa_;
   detail::SetupCornersConstants constants_;
   detail::SetupCoverageConstants coverageConstants_;
   detail::SetupCoverageLanes coverage_;

@@ -102,7 +102,7 @@ void expectSameTriangle(const SetupTriangle<N>& a, const SetupTriangle<N>& b, si
 }
 
 template <int N>
-void compareWithSetupTriangle(bool avx2) {
+void compareWithSetupTriangle(detail::SetupIsa isa) {
   PipelineState state;
   state.viewport = {0, 0, kWidth, kHeight};
   const ScreenMapping mapping = ScreenMapping::forState(state);
@@ -143,7 +143,7 @@ void compareWithSetupTriangle(bool avx2) {
               ScratchVector<SetupTriangle<N>> got;
               got.reserve(v.size() / 3);
               PipelineStatistics stats;
-              SetupBatch<N> batch(ctx, avx2);
+              SetupBatch<N> batch(ctx, isa);
               // Flushed when full, and also early now and then, as a clipped triangle does.
               for (size_t t = 0; 3 * t < v.size(); ++t) {
                 batch.add({&v[3 * t], &v[3 * t + 1], &v[3 * t + 2]}, uint32_t(t));
@@ -165,15 +165,22 @@ void compareWithSetupTriangle(bool avx2) {
   for (size_t k : kinds) EXPECT_GT(k, 1000u);
 }
 
+// The builds this CPU runs: baseline always, then AVX2 and AVX-512 where present.
 TEST(SetupBatch, EqualsSetupTriangleBaselineBuild) {
-  compareWithSetupTriangle<0>(false);
-  compareWithSetupTriangle<3>(false);
+  compareWithSetupTriangle<0>(detail::SetupIsa::Baseline);
+  compareWithSetupTriangle<3>(detail::SetupIsa::Baseline);
 }
 
 TEST(SetupBatch, EqualsSetupTriangleAvx2Build) {
-  if (!detail::cpuHasAvx2()) GTEST_SKIP() << "no AVX2 on this CPU";
-  compareWithSetupTriangle<0>(true);
-  compareWithSetupTriangle<3>(true);
+  if (detail::bestSetupIsa() < detail::SetupIsa::Avx2) GTEST_SKIP() << "no AVX2 on this CPU";
+  compareWithSetupTriangle<0>(detail::SetupIsa::Avx2);
+  compareWithSetupTriangle<3>(detail::SetupIsa::Avx2);
+}
+
+TEST(SetupBatch, EqualsSetupTriangleAvx512Build) {
+  if (detail::bestSetupIsa() < detail::SetupIsa::Avx512) GTEST_SKIP() << "no AVX-512 on this CPU";
+  compareWithSetupTriangle<0>(detail::SetupIsa::Avx512);
+  compareWithSetupTriangle<3>(detail::SetupIsa::Avx512);
 }
 
 }  // namespace
