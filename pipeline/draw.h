@@ -62,7 +62,10 @@ Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>&
     clock.lap(&StageTimings::clipSetup);
 
     TileBins bins(fb.width(), fb.height(), exec.memory, exec.binLevels);
-    bins.build(triangles.chunks, state.format, sampleReach, &SetupTriangles<N>::id, local,
+    // A lambda, not &SetupTriangles<N>::id: binning calls it per triangle, and a function
+    // pointer is not inlined there.
+    bins.build(triangles.chunks, state.format, sampleReach,
+               [](size_t c, size_t i) { return SetupTriangles<PS::kVaryings>::id(c, i); }, local,
                state.rasterMode == RasterMode::Float ? &triangles.floatChunks : nullptr);
     local.binEntries += bins.entryCount();
     if (exec.capture) exec.capture->record(bins, triangles);
