@@ -47,7 +47,8 @@ namespace {
 // setupCoverage lane by lane. Its int64 arithmetic on the bounds fits int32 here: corners lie
 // within 2^26 subpixels of the origin (fixed_point.h) and the sample reach is below a pixel
 // (2^8 subpixels at most), so every sum below is under 2^27 in magnitude and the shifts give
-// setupCoverage's pixels. The edge products are taken in int64 as EdgeFunction::through does.
+// setupCoverage's pixels. Corner differences (the edges' a and b) are below 2^27 too; their
+// products, up to 2^54, are taken in int64 as in EdgeFunction::through and setupCoverage.
 [[gnu::always_inline]] inline void coverageLanesBody(const SetupCoverageConstants& k,
                                                      const SetupCorners& c, int lanes,
                                                      SetupCoverageLanes& out) {
