@@ -116,7 +116,10 @@ class SetupBatch {
   void add(const std::array<const ShadedVertex<N>*, 3>& v, uint32_t primitiveId) {
     for (int i = 0; i < 3; ++i)
       for (int c = 0; c < 4; ++c) corners_.p[i][c][count_] = double(v[i]->position[c]);
-    vertices_[count_] = v;
+    // The varyings are read now, with the positions' cache lines: at the flush, up to sixteen
+    // triangles later, they could be gone.
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < N; ++k) varyingValues_[k][i][count_] = double(v[i]->varyings[k]);
     primitiveIds_[count_] = primitiveId;
     ++count_;
   }
@@ -159,7 +162,7 @@ class SetupBatch {
       for (int k = 0; k < N; ++k) {
         for (int i = 0; i < 3; ++i)
           for (int l = 0; l < n; ++l)
-            overW_[i][l] = double(vertices_[l][i]->varyings[k]) * corners_.invW[i][l];
+            overW_[i][l] = varyingValues_[k][i][l] * corners_.invW[i][l];
         detail::planesThrough(planeInputs_, coverage_, overW_, n, varyings_[k], isa_);
       }
     }
@@ -198,7 +201,8 @@ class SetupBatch {
   [[no_unique_address]] std::conditional_t<(N > 0), detail::SetupPlanes, NoPlane> invW_;
   std::array<detail::SetupPlanes, N> varyings_;
   alignas(64) double overW_[3][detail::kSetupLanes];
-  std::array<std::array<const ShadedVertex<N>*, 3>, kCapacity> vertices_;
+  // Per varying: its value at each corner (double of the float), as SetupCorners::p.
+  alignas(64) double varyingValues_[N > 0 ? N : 1][3][detail::kSetupLanes];
   std::array<uint32_t, kCapacity> primitiveIds_;
 };
 
