@@ -48,32 +48,9 @@ struct SetupContext {
   RasterMode rasterMode = RasterMode::FixedPoint;
 };
 
-// The steps of setup, shared by setupTriangle (one triangle) and SetupBatch (setup_batch.h),
-// which runs each step over several triangles before the next.
-
-// The window positions of the corners; false when one is not finite (counted by the caller).
-template <class V>
-bool windowPositions(const std::array<const V*, 3>& v, const ScreenMapping& mapping,
-                     std::array<WindowPosition, 3>& w) {
-  for (int i = 0; i < 3; ++i) {
-    w[i] = mapping.toWindow(glm::dvec4(v[i]->position));
-    if (!std::isfinite(w[i].x) || !std::isfinite(w[i].y) || !std::isfinite(w[i].z) ||
-        !std::isfinite(w[i].invW))
-      return false;
-  }
-  return true;
-}
-
-inline std::array<SnappedPoint, 3> snapCorners(const std::array<WindowPosition, 3>& w,
-                                               FixedPointFormat format) {
-  std::array<SnappedPoint, 3> snapped;
-  for (int i = 0; i < 3; ++i)
-    snapped[i] = {snapToSubpixels(w[i].x, format), snapToSubpixels(w[i].y, format)};
-  return snapped;
-}
-
 // Whether a triangle whose coverage setup gave `outcome` is drawn after culling; counts why not.
-// `front`: whether it faces the viewer.
+// `front`: whether it faces the viewer. Shared with SetupBatch (setup_batch.h), so that both
+// count the same way.
 inline bool acceptCoverage(SetupOutcome outcome, bool clockwiseOnScreen, const SetupContext& ctx,
                            PipelineStatistics& stats, bool& front) {
   if (outcome == SetupOutcome::ZeroArea) {
@@ -96,29 +73,6 @@ inline bool acceptCoverage(SetupOutcome outcome, bool clockwiseOnScreen, const S
   return true;
 }
 
-// 1 / twice the signed area of the corners (pixels), which every plane divides by.
-inline double inverseDoubleArea(const std::array<double, 3>& x, const std::array<double, 3>& y) {
-  const double signedArea = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
-  return 1.0 / signedArea;
-}
-
-// Depth, 1/w and varying/w planes through the corners (x, y in pixels), anchored at the origin of
-// `out.bounds`, which must be set.
-template <int N, class V>
-void setupPlanes(const std::array<const V*, 3>& v, const std::array<WindowPosition, 3>& w,
-                 const std::array<double, 3>& x, const std::array<double, 3>& y, double inv,
-                 SetupTriangle<N>& out) {
-  const int ax = out.bounds.x0, ay = out.bounds.y0;
-  out.depth = PlaneEquation::through(x, y, {w[0].z, w[1].z, w[2].z}, inv, ax, ay);
-  if constexpr (N > 0)
-    out.invW = PlaneEquation::through(x, y, {w[0].invW, w[1].invW, w[2].invW}, inv, ax, ay);
-  for (int k = 0; k < N; ++k) {
-    std::array<double, 3> overW;
-    for (int i = 0; i < 3; ++i) overW[i] = double(v[i]->varyings[k]) * w[i].invW;
-    out.varyingsOverW[k] = PlaneEquation::through(x, y, overW, inv, ax, ay);
-  }
-}
-
 // Sets up one triangle whose vertices lie inside the guard band (the clipper made sure). Returns
 // false, having counted why, when it draws nothing. In float mode the float edges go to
 // `floatEdges`.
@@ -128,11 +82,17 @@ bool setupTriangle(const std::array<const V*, 3>& v, const SetupContext& ctx,
                    uint32_t primitiveId, SetupTriangle<N>& out, FloatEdges& floatEdges,
                    PipelineStatistics& stats) {
   std::array<WindowPosition, 3> w;
-  if (!windowPositions(v, ctx.mapping, w)) {
-    ++stats.clipDegenerate;
-    return false;
+  for (int i = 0; i < 3; ++i) {
+    w[i] = ctx.mapping.toWindow(glm::dvec4(v[i]->position));
+    if (!std::isfinite(w[i].x) || !std::isfinite(w[i].y) || !std::isfinite(w[i].z) ||
+        !std::isfinite(w[i].invW)) {
+      ++stats.clipDegenerate;
+      return false;
+    }
   }
-  const std::array<SnappedPoint, 3> snapped = snapCorners(w, ctx.format);
+  std::array<SnappedPoint, 3> snapped;
+  for (int i = 0; i < 3; ++i)
+    snapped[i] = {snapToSubpixels(w[i].x, ctx.format), snapToSubpixels(w[i].y, ctx.format)};
 
   CoverageSetup coverage;
   const bool floatMode = ctx.rasterMode == RasterMode::Float;
@@ -151,14 +111,25 @@ bool setupTriangle(const std::array<const V*, 3>& v, const SetupContext& ctx,
 
   // Planes through the snapped positions (float mode: the float ones), so interpolation agrees
   // with the coverage it serves.
-  std::array<double, 3> x, y;
+  std::array<double, 3> x, y, depth, invW;
   for (int i = 0; i < 3; ++i) {
     // (Float mode widens the floats setupFloatCoverage stored, not double(float(w[i].x)) here:
     // GCC 12 at -O2 and above drops that rounding in one lane of the vectorized loop.)
     x[i] = floatMode ? floatEdges.x[i] : subpixelsToPixels(snapped[i].x, ctx.format);
     y[i] = floatMode ? floatEdges.y[i] : subpixelsToPixels(snapped[i].y, ctx.format);
+    depth[i] = w[i].z;
+    invW[i] = w[i].invW;
   }
-  setupPlanes<N>(v, w, x, y, inverseDoubleArea(x, y), out);
+  const double signedArea = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+  const double inv = 1.0 / signedArea;
+  const int ax = out.bounds.x0, ay = out.bounds.y0;
+  out.depth = PlaneEquation::through(x, y, depth, inv, ax, ay);
+  if constexpr (N > 0) out.invW = PlaneEquation::through(x, y, invW, inv, ax, ay);
+  for (int k = 0; k < N; ++k) {
+    std::array<double, 3> overW;
+    for (int i = 0; i < 3; ++i) overW[i] = double(v[i]->varyings[k]) * w[i].invW;
+    out.varyingsOverW[k] = PlaneEquation::through(x, y, overW, inv, ax, ay);
+  }
   ++stats.setupTriangles;
   return true;
 }

@@ -101,7 +101,7 @@ namespace {
       out.x[i][l] = double(c.x[i][l]) * pixelsPerSubpixel;  // subpixelsToPixels
       out.y[i][l] = double(c.y[i][l]) * pixelsPerSubpixel;
     }
-  // inverseDoubleArea (setup.h)
+  // 1 / twice the signed area, as setupTriangle (setup.h) computes it.
   for (int l = 0; l < lanes; ++l) {
     const double signedArea = (out.x[1][l] - out.x[0][l]) * (out.y[2][l] - out.y[0][l]) -
                               (out.x[2][l] - out.x[0][l]) * (out.y[1][l] - out.y[0][l]);
