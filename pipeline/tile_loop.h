@@ -19,6 +19,7 @@
 #include <span>
 #include <vector>
 
+#include <immintrin.h>
 #include <tbb/combinable.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -142,31 +143,40 @@ inline bool allPass(CompareOp op, float triMin, float triMax, const TileDepthBou
   }
 }
 
-// Eight bytes of 0 or 1 (lane j in byte j) to eight mask bits (lane j in bit j): the multiply
-// gathers byte j's bit into bit 56 + j; no partial sum reaches the next byte (the largest, at
-// byte 6, is 2 + 4 + ... + 128 = 254).
-// Rows [rowBegin, rowEnd) only.
-RAST_TILE_INLINE uint64_t packLaneBytes(const uint8_t* lanes, int rowBegin, int rowEnd) {
-  CoverageMask mask = 0;
-  for (int row = rowBegin; row < rowEnd; ++row) {
-    uint64_t bytes;
-    std::memcpy(&bytes, lanes + kTileSize * row, sizeof bytes);
-    mask |= (((bytes & 0x0101010101010101ull) * 0x0102040810204080ull) >> 56) << (kTileSize * row);
-  }
-  return mask;
+// The compare op on four lanes, as a lane mask: SSE2's ordered compares are false on NaN, as C++'s
+// <, <=, ==, >, >= are; its "not equal" is true on NaN, as != is. So the lanes agree with
+// depthPasses bit for bit (tests/merge_test.cpp). SSE2 is part of the x86-64 baseline: no
+// dispatch is needed, and both builds of the tile loop use the same instructions.
+template <CompareOp Op>
+RAST_TILE_INLINE int depthPassBits4(__m128 z, __m128 stored) {
+  using enum CompareOp;
+  if constexpr (Op == Less) return _mm_movemask_ps(_mm_cmplt_ps(z, stored));
+  else if constexpr (Op == LessEqual) return _mm_movemask_ps(_mm_cmple_ps(z, stored));
+  else if constexpr (Op == Equal) return _mm_movemask_ps(_mm_cmpeq_ps(z, stored));
+  else if constexpr (Op == Greater) return _mm_movemask_ps(_mm_cmpgt_ps(z, stored));
+  else if constexpr (Op == GreaterEqual) return _mm_movemask_ps(_mm_cmpge_ps(z, stored));
+  else if constexpr (Op == NotEqual) return _mm_movemask_ps(_mm_cmpneq_ps(z, stored));
+  else if constexpr (Op == Never) return 0;
+  else return 0xf;
 }
 
 // The depth test of 64 lanes, specialised on the compare op; returns the lanes of `mask` that pass.
-// Only rows [rowBegin, rowEnd) are read: the rows `mask` touches.
-
+// Only rows [rowBegin, rowEnd) are read: the rows `mask` touches. The pass bits are formed in
+// registers, eight per row: writing them as bytes and reading eight bytes back as one word (the
+// earlier version) stalled on every row, since a load cannot be forwarded from eight separate
+// byte stores (8 % of W2 tiny-1's tile loop sat on that load).
 template <CompareOp Op>
 RAST_TILE_INLINE CoverageMask depthTestLanes(const TileLanes<float>& z, const TileLanes<float>& stored,
                             CoverageMask mask, int rowBegin, int rowEnd) {
-  // Rows outside [rowBegin, rowEnd) are neither written nor read.
-  alignas(64) uint8_t pass[kTileLanes];
-  for (int i = rowBegin * kTileSize; i < rowEnd * kTileSize; ++i)
-    pass[i] = depthPasses<Op>(z[i], stored[i]) ? 1 : 0;
-  return packLaneBytes(pass, rowBegin, rowEnd) & mask;
+  CoverageMask pass = 0;
+  for (int row = rowBegin; row < rowEnd; ++row) {
+    const float* zr = &z[size_t(row) * kTileSize];
+    const float* sr = &stored[size_t(row) * kTileSize];
+    const int bits = depthPassBits4<Op>(_mm_loadu_ps(zr), _mm_loadu_ps(sr)) |
+                     depthPassBits4<Op>(_mm_loadu_ps(zr + 4), _mm_loadu_ps(sr + 4)) << 4;
+    pass |= CoverageMask(unsigned(bits)) << (kTileSize * row);
+  }
+  return pass & mask;
 }
 
 // The same tests by a switch, so that the tile loop inlines them (and compiles them for its target).

@@ -136,6 +136,64 @@ TEST(MergeDepth, CompareTruthTable) {
   }
 }
 
+bool passesAt(CompareOp op, float fragment, float stored) {
+  switch (op) {
+    case CompareOp::Never: return depthPasses<CompareOp::Never>(fragment, stored);
+    case CompareOp::Less: return depthPasses<CompareOp::Less>(fragment, stored);
+    case CompareOp::Equal: return depthPasses<CompareOp::Equal>(fragment, stored);
+    case CompareOp::LessEqual: return depthPasses<CompareOp::LessEqual>(fragment, stored);
+    case CompareOp::Greater: return depthPasses<CompareOp::Greater>(fragment, stored);
+    case CompareOp::NotEqual: return depthPasses<CompareOp::NotEqual>(fragment, stored);
+    case CompareOp::GreaterEqual: return depthPasses<CompareOp::GreaterEqual>(fragment, stored);
+    case CompareOp::Always: return depthPasses<CompareOp::Always>(fragment, stored);
+  }
+  return false;
+}
+
+// The tile loop's 64-lane depth test (SIMD compares turned into mask bits) against depthPasses,
+// lane by lane: every compare op, every pair of values that includes NaN, both zeros, infinities
+// and a denormal, under a mask, on every range of rows. Lanes outside the rows or the mask must
+// come out clear (except for Always, which tests nothing).
+TEST(MergeDepth, TileDepthTestAgreesWithDepthPassesOnEveryLane) {
+  const float kNaN = std::numeric_limits<float>::quiet_NaN();
+  const float kInf = std::numeric_limits<float>::infinity();
+  const std::array<float, 9> values = {kNaN, -kInf, -1.0f, -0.0f, 0.0f, 1e-40f, 0.5f, 1.0f, kInf};
+  constexpr int kPairs = int(values.size() * values.size());  // 81: two tiles' worth of lanes
+  uint64_t pattern = 0x9e3779b97f4a7c15ull;
+  int checkedPasses = 0, checkedFails = 0;
+  for (const TruthRow& row : kTruthTable) {
+    for (int first = 0; first < kPairs; first += kTileLanes) {
+      TileLanes<float> z{}, stored{};
+      for (int lane = 0; lane < kTileLanes; ++lane) {
+        const int pair = (first + lane) % kPairs;
+        z[lane] = values[size_t(pair) % values.size()];
+        stored[lane] = values[size_t(pair) / values.size()];
+      }
+      for (int rowBegin = 0; rowBegin < kTileSize; ++rowBegin)
+        for (int rowEnd = rowBegin + 1; rowEnd <= kTileSize; ++rowEnd) {
+          pattern = pattern * 6364136223846793005ull + 1442695040888963407ull;
+          for (const CoverageMask mask : {kFullMask, pattern}) {
+            const CoverageMask got = depthTestInline(row.op, z, stored, mask, rowBegin, rowEnd);
+            for (int lane = 0; lane < kTileLanes; ++lane) {
+              const bool inRows = lane / kTileSize >= rowBegin && lane / kTileSize < rowEnd;
+              // Always tests nothing: the mask comes back whole.
+              const bool want = row.op == CompareOp::Always
+                                    ? (mask >> lane & 1) != 0
+                                    : inRows && (mask >> lane & 1) &&
+                                          passesAt(row.op, z[lane], stored[lane]);
+              ASSERT_EQ((got >> lane & 1) != 0, want)
+                  << opName(row.op) << " fragment " << z[lane] << " stored " << stored[lane]
+                  << " lane " << lane << " rows [" << rowBegin << ", " << rowEnd << ")";
+              if (inRows && (mask >> lane & 1)) ++(want ? checkedPasses : checkedFails);
+            }
+          }
+        }
+    }
+  }
+  EXPECT_GT(checkedPasses, 10000);
+  EXPECT_GT(checkedFails, 10000);
+}
+
 // Colour writes off: the colour plane is untouched while depth and counts still follow the test.
 // A shader that cannot discard then has no visible effect and is not run (tile_loop.h).
 TEST(MergeColorWrite, OffLeavesColourUnchanged) {
