@@ -24,8 +24,8 @@ using PackedColor = uint32_t;
   const float clamped = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
   return uint32_t(clamped * 255.0f + 0.5f);
 }
-// Forced inline: the back end packs a per-triangle colour once per (triangle, tile), and GCC left
-// it a call there (2 % of a W2 tiny-1 frame).
+// Forced inline: the tile loop packs once per shaded lane (W1) or once per (triangle, tile) for a
+// per-triangle shader (W2), and GCC had left it a call there (2 % of a W2 tiny-1 frame).
 [[gnu::always_inline]] inline PackedColor packColor(glm::vec4 c) {
   return colorByte(c.r) | (colorByte(c.g) << 8) | (colorByte(c.b) << 16) | (colorByte(c.a) << 24);
 }

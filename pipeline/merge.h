@@ -1,5 +1,5 @@
-// The output merger's parts: the depth compare (instantiated per compare op, chosen once per
-// draw; see tile_loop.h) and the framebuffer planes the back end writes. Blending: blend.h.
+// The output merger's parts: the depth compare and the framebuffer planes the back end writes.
+// Blending: blend.h.
 #pragma once
 
 #include <cstdint>
@@ -9,6 +9,8 @@
 
 namespace rast {
 
+// What each compare op means, one fragment at a time: the reference that the tile loop's SIMD
+// depth test (depthTestLanes, tile_loop.h) must match on every lane (tests/merge_test.cpp).
 template <CompareOp Op>
 constexpr bool depthPasses(float fragment, float stored) {
   if constexpr (Op == CompareOp::Never) return false;

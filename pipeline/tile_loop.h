@@ -162,9 +162,8 @@ RAST_TILE_INLINE int depthPassBits4(__m128 z, __m128 stored) {
 
 // The depth test of 64 lanes, specialised on the compare op; returns the lanes of `mask` that pass.
 // Only rows [rowBegin, rowEnd) are read: the rows `mask` touches. The pass bits are formed in
-// registers, eight per row: writing them as bytes and reading eight bytes back as one word (the
-// earlier version) stalled on every row, since a load cannot be forwarded from eight separate
-// byte stores (8 % of W2 tiny-1's tile loop sat on that load).
+// registers, eight per row, not stored as bytes and read back as a word: a load is not forwarded
+// from eight separate byte stores, and that stall cost 8 % of W2 tiny-1's tile loop.
 template <CompareOp Op>
 RAST_TILE_INLINE CoverageMask depthTestLanes(const TileLanes<float>& z, const TileLanes<float>& stored,
                             CoverageMask mask, int rowBegin, int rowEnd) {
