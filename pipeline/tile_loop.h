@@ -31,6 +31,7 @@
 #include "pipeline/merge.h"
 #include "pipeline/shader.h"
 #include "rasterizer/coverage_kernels.h"
+#include "rasterizer/rect_coverage.h"
 #include "rasterizer/sample_pattern.h"
 
 namespace rast {
@@ -221,16 +222,46 @@ struct BackEndConfig {
   bool depthUsed() const { return depthRead() || depthWrite; }
 };
 
+// A plane over a row of a tile, four lanes a half: the part of (at0 + ddx*dx) + ddy*dy that does
+// not change from row to row, at the columns dx = dx0 + 0..3 and dx0 + 4..7. The float sums and
+// products are those interpolateDepth and interpolateVaryings make at each lane (SSE2's are IEEE
+// single precision, and -ffp-contract=off keeps FMA out), so every lane gets their bits.
+struct PlaneRow {
+  __m128 left, right;  // at0 + ddx*dx
+  __m128 ddy;
+};
+RAST_TILE_INLINE PlaneRow planeRow(const PlaneEquation& p, float dx0) {
+  const __m128 dx = _mm_set1_ps(dx0);
+  const __m128 at0 = _mm_set1_ps(p.at0), ddx = _mm_set1_ps(p.ddx);
+  return {_mm_add_ps(at0, _mm_mul_ps(ddx, _mm_add_ps(dx, _mm_setr_ps(0, 1, 2, 3)))),
+          _mm_add_ps(at0, _mm_mul_ps(ddx, _mm_add_ps(dx, _mm_setr_ps(4, 5, 6, 7)))),
+          _mm_set1_ps(p.ddy)};
+}
+
+// interpolateDepth's clamp to [0, 1] on four lanes: z < 0 ? 0 : (z > 1 ? 1 : z), by compares and
+// masks, not min/max (which would turn -0 into +0, where the clamp keeps -0, and NaN into a bound).
+RAST_TILE_INLINE __m128 clampDepth4(__m128 z) {
+  const __m128 one = _mm_set1_ps(1.0f);
+  const __m128 above = _mm_cmpgt_ps(z, one);
+  const __m128 upper = _mm_or_ps(_mm_and_ps(above, one), _mm_andnot_ps(above, z));
+  return _mm_andnot_ps(_mm_cmplt_ps(z, _mm_setzero_ps()), upper);
+}
+
 // Depth of the triangle at the lanes of rows [rowBegin, rowEnd) of sample s: interpolateDepth at
-// each, so the per-sample and per-pixel paths agree bit for bit.
+// each, so the per-sample and per-pixel paths agree bit for bit (tests/interpolation_test.cpp).
+// Written in SSE2 a row at a time: the loop GCC vectorised from interpolateDepth per lane spent
+// most of its instructions on the lane's column and row (10 % of a W2 tiny-10 frame).
 template <int N>
 RAST_TILE_INLINE void depthLanes(const SetupTriangle<N>& t, int x0, int y0, float offsetX, float offsetY,
                 int rowBegin, int rowEnd, TileLanes<float>& z) {
   const float dx0 = float(x0 - t.bounds.x0) + offsetX, dy0 = float(y0 - t.bounds.y0) + offsetY;
-  // One loop over the lanes of the rows, which GCC vectorises; a loop of eight per row it
-  // unrolls completely and vectorises less well (W4's back end took 7 % longer).
-  for (int lane = rowBegin * kTileSize; lane < rowEnd * kTileSize; ++lane)
-    z[lane] = interpolateDepth(t, dx0 + float(lane % kTileSize), dy0 + float(lane / kTileSize));
+  const PlaneRow p = planeRow(t.depth, dx0);
+  for (int row = rowBegin; row < rowEnd; ++row) {
+    const __m128 down = _mm_mul_ps(p.ddy, _mm_set1_ps(dy0 + float(row)));
+    float* out = &z[size_t(row) * kTileSize];
+    _mm_storeu_ps(out, clampDepth4(_mm_add_ps(p.left, down)));
+    _mm_storeu_ps(out + 4, clampDepth4(_mm_add_ps(p.right, down)));
+  }
 }
 
 // The depth buffer format's value of each lane (depth_format.h), rows [rowBegin, rowEnd).
@@ -260,8 +291,8 @@ RAST_TILE_INLINE RowRange coveredRows(CoverageMask mask) {
 }
 
 // The varyings of rows [rowBegin, rowEnd) of a tile, lane by lane: interpolateVaryings at each
-// lane (dx, dy are small integers, exact in float either way), in one loop over the lanes of the
-// rows that the compiler vectorises (as depthLanes).
+// lane (dx, dy are small integers, exact in float either way), a row at a time in SSE2 as
+// depthLanes: v/w at the lane times 1 / (1/w at the lane), IEEE division included.
 template <int N>
 using TileVaryings = std::array<TileLanes<float>, N>;
 
@@ -270,10 +301,20 @@ RAST_TILE_INLINE void interpolateRows(const SetupTriangle<N>& t, int x0, int y0,
                                       int rowEnd, TileVaryings<N>& out) {
   if constexpr (N > 0) {
     const float dx0 = float(x0 - t.bounds.x0), dy0 = float(y0 - t.bounds.y0);
-    for (int lane = rowBegin * kTileSize; lane < rowEnd * kTileSize; ++lane) {
-      Varyings<N> v;
-      interpolateVaryings<N>(t, dx0 + float(lane % kTileSize), dy0 + float(lane / kTileSize), v);
-      for (int k = 0; k < N; ++k) out[k][lane] = v[k];
+    const PlaneRow invW = planeRow(t.invW, dx0);
+    std::array<PlaneRow, N> overW;
+    for (int k = 0; k < N; ++k) overW[k] = planeRow(t.varyingsOverW[k], dx0);
+    const __m128 one = _mm_set1_ps(1.0f);
+    for (int row = rowBegin; row < rowEnd; ++row) {
+      const __m128 dy = _mm_set1_ps(dy0 + float(row));
+      const __m128 wLeft = _mm_div_ps(one, _mm_add_ps(invW.left, _mm_mul_ps(invW.ddy, dy)));
+      const __m128 wRight = _mm_div_ps(one, _mm_add_ps(invW.right, _mm_mul_ps(invW.ddy, dy)));
+      for (int k = 0; k < N; ++k) {
+        const __m128 down = _mm_mul_ps(overW[k].ddy, dy);
+        float* o = &out[k][size_t(row) * kTileSize];
+        _mm_storeu_ps(o, _mm_mul_ps(_mm_add_ps(overW[k].left, down), wLeft));
+        _mm_storeu_ps(o + 4, _mm_mul_ps(_mm_add_ps(overW[k].right, down), wRight));
+      }
     }
   }
 }
@@ -490,6 +531,34 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
                         (kShadesPerTriangle<PS> || !cfg.colorWrite) &&
                         (cfg.depthWrite || cfg.colorWrite);
 
+  // Where the triangle's bounds meet the tile in a few pixels (small triangles), those pixels are
+  // evaluated directly (coverRect) instead of the tile's 64 by the kernel, whenever a SIMD kernel
+  // is chosen: the scalar reference kernel keeps the reference path for every tile, and the tests
+  // compare the two. Up to 36 pixels (6x6): always fewer than the tile's 64, which the kind
+  // Partial below relies on.
+  constexpr int kSmallRectPixels = 36;
+  static_assert(kSmallRectPixels < kTileLanes);
+  const bool coverSmallRects =
+      S == 1 && cfg.rasterMode == RasterMode::FixedPoint && cfg.kernel.simd != nullptr;
+  auto cover = [&](const SetupTriangle<N>& t, uint32_t id, int s)
+                   RAST_TILE_LAMBDA -> TileCoverageResult {
+    if (cfg.rasterMode == RasterMode::Float)
+      return coverTileFloat(triangles.floatEdges(id), t.bounds, tileX, tileY);
+    if (coverSmallRects) {
+      const TileRect r = tileRectOf(t.bounds, tileX, tileY);
+      if (r.x0 < r.x1 && r.y0 < r.y1 && (r.x1 - r.x0) * (r.y1 - r.y0) <= kSmallRectPixels) {
+        // A covered sample rules out Outside (an edge negative over the whole tile), and a
+        // rectangle smaller than the tile rules out Inside (the tile within the bounds): the
+        // kind is Partial, as coverTile finds. With no sample covered, coverTile tells Outside
+        // from Partial.
+        if (const CoverageMask m = coverRect(t.edges, r, tileX, tileY, cfg.format))
+          return {m, TileCoverage::Partial};
+      }
+    }
+    return coverTile(cfg.kernel, t.edges, t.bounds, tileX, tileY, cfg.format,
+                     cfg.samples.offsetX(s, cfg.format), cfg.samples.offsetY(s, cfg.format));
+  };
+
   for (size_t b = 0; b < bin.size(); ++b) {
     const uint32_t id = bin[b] & ~kWholeTileBit;
     const SetupTriangle<N>& t = triangles[id];
@@ -511,11 +580,7 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
       covered = uint64_t(S) * kTileLanes;
     } else {
       for (int s = 0; s < S; ++s) {
-        const TileCoverageResult c =
-            cfg.rasterMode == RasterMode::Float
-                ? coverTileFloat(triangles.floatEdges(id), t.bounds, tileX, tileY)
-                : coverTile(cfg.kernel, t.edges, t.bounds, tileX, tileY, cfg.format,
-                            cfg.samples.offsetX(s, cfg.format), cfg.samples.offsetY(s, cfg.format));
+        const TileCoverageResult c = cover(t, id, s);
         if (s == 0) {
           // Whole-tile outcomes are counted for sample 0, the only one without MSAA.
           if (c.kind == TileCoverage::Outside) ++stats.tilesTriviallyRejected;

@@ -386,5 +386,72 @@ TEST(InterpolationRows, EveryLaneEqualsInterpolateVaryingsBitForBit) {
   EXPECT_GT(pastZero, 0u) << "no lane where 1/w is negative: the extrapolation is not tested";
 }
 
+// Depth is interpolated a row of a tile at a time as well (depthLanes, SSE2); every lane must hold
+// interpolateDepth's bits at its sample, clamp included: depths beyond [0, 1] clamp to the bound,
+// -0 stays -0, NaN stays NaN. Baseline and AVX2 builds, with MSAA sample offsets.
+template <int N>
+void depthLanesBaseline(const SetupTriangle<N>& t, int x0, int y0, float ox, float oy, int r0,
+                        int r1, TileLanes<float>& z) {
+  depthLanes<N>(t, x0, y0, ox, oy, r0, r1, z);
+}
+template <int N>
+[[gnu::target("avx2")]] void depthLanesAvx2(const SetupTriangle<N>& t, int x0, int y0, float ox,
+                                            float oy, int r0, int r1, TileLanes<float>& z) {
+  depthLanes<N>(t, x0, y0, ox, oy, r0, r1, z);
+}
+
+TEST(InterpolationRows, EveryDepthLaneEqualsInterpolateDepthBitForBit) {
+  std::mt19937 rng(0xde97);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), slope(-0.02f, 0.02f);
+  std::uniform_int_distribution<int> pixel(0, 4000), row(0, kTileSize - 1);
+  const float kOffsets[] = {0.0f, 0.125f, -0.375f, 0.4375f};
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  const bool avx2 = cpuHasAvx2BackEnd();
+  uint64_t lanes = 0, clampedLow = 0, clampedHigh = 0, negativeZero = 0, nans = 0;
+  for (int iter = 0; iter < 20000; ++iter) {
+    SetupTriangle<0> t;
+    t.bounds = {pixel(rng), pixel(rng), 0, 0};
+    t.bounds.x1 = t.bounds.x0 + 64;
+    t.bounds.y1 = t.bounds.y0 + 64;
+    t.depth = {unit(rng) * 1.2f - 0.1f, slope(rng), slope(rng)};
+    if (iter % 7 == 0) t.depth.ddx *= 100.0f;  // steep: most lanes clamp
+    if (iter % 101 == 0) t.depth = {-0.0f, -0.0f, -0.0f};
+    if (iter % 103 == 0) t.depth.ddy = nan;
+    if (iter % 107 == 0) t.depth.ddx = inf;
+    const int x0 = t.bounds.x0 + int(rng() % 56), y0 = t.bounds.y0 + int(rng() % 56);
+    const float ox = kOffsets[rng() % 4], oy = kOffsets[rng() % 4];
+    int r0 = row(rng), r1 = row(rng);
+    if (r0 > r1) std::swap(r0, r1);
+    ++r1;
+    for (int target = 0; target < (avx2 ? 2 : 1); ++target) {
+      TileLanes<float> z;
+      if (target == 0) depthLanesBaseline<0>(t, x0, y0, ox, oy, r0, r1, z);
+      else depthLanesAvx2<0>(t, x0, y0, ox, oy, r0, r1, z);
+      for (int ly = r0; ly < r1; ++ly)
+        for (int lx = 0; lx < kTileSize; ++lx) {
+          const float dx = float(x0 - t.bounds.x0) + ox + float(lx);
+          const float dy = float(y0 - t.bounds.y0) + oy + float(ly);
+          const float expected = interpolateDepth(t, dx, dy);
+          const float got = z[ly * kTileSize + lx];
+          ASSERT_TRUE(sameFloat(got, expected))
+              << (target ? "AVX2" : "baseline") << ", iteration " << iter << ", lane (" << lx
+              << ", " << ly << "): " << got << " != " << expected;
+          const float raw = t.depth.at(dx, dy);
+          clampedLow += raw < 0.0f;
+          clampedHigh += raw > 1.0f;
+          negativeZero += std::bit_cast<uint32_t>(got) == 0x80000000u;
+          nans += std::isnan(got);
+          ++lanes;
+        }
+    }
+  }
+  EXPECT_GT(lanes, 500000u);
+  EXPECT_GT(clampedLow, 0u);
+  EXPECT_GT(clampedHigh, 0u);
+  EXPECT_GT(negativeZero, 0u) << "-0 is not tested";
+  EXPECT_GT(nans, 0u) << "NaN is not tested";
+}
+
 }  // namespace
 }  // namespace rast
