@@ -10,6 +10,7 @@
 #include <tbb/task_arena.h>
 
 #include "pipeline/draw.h"
+#include "rasterizer/rect_coverage.h"
 #include "scene/camera.h"
 #include "scene/mesh.h"
 #include "shaders_cpp/constant_color.h"
@@ -272,6 +273,33 @@ void BM_RasterCoverage(benchmark::State& state, const CoverageKernel& kernel, in
       double(state.iterations()) * double(jobs.size()) * 64, benchmark::Counter::kIsRate);
 }
 
+// Small triangles (about 10 px², W1's and tiny-10's size) in the tiles their bounds meet in at
+// most 36 pixels, the back end's coverRect case: each kernel's whole-tile coverage (kernel =
+// nullptr: coverRect, the pixels of the rectangle alone), on the same (triangle, tile) pairs, so
+// that the rates compare side by side.
+void BM_RasterSmallRect(benchmark::State& state, const CoverageKernel* kernel, int bits) {
+  const FixedPointFormat f = FixedPointFormat::withFractionBits(bits);
+  const std::vector<SetupTriangle<3>> tris = setUp(randomTriangles(20000, 10, 5), f);
+  struct Job { size_t tri; int tx, ty; TileRect rect; };
+  std::vector<Job> jobs;
+  for (size_t i = 0; i < tris.size(); ++i) {
+    const PixelRect& b = tris[i].bounds;
+    for (int ty = b.y0 >> 3; ty <= (b.y1 - 1) >> 3; ++ty)
+      for (int tx = b.x0 >> 3; tx <= (b.x1 - 1) >> 3; ++tx) {
+        const TileRect r = tileRectOf(b, tx, ty);
+        if ((r.x1 - r.x0) * (r.y1 - r.y0) <= 36) jobs.push_back({i, tx, ty, r});
+      }
+  }
+  for (auto _ : state)
+    for (const Job& j : jobs) {
+      const SetupTriangle<3>& t = tris[j.tri];
+      benchmark::DoNotOptimize(kernel ? coverTile(*kernel, t.edges, t.bounds, j.tx, j.ty, f).mask
+                                      : coverRect(t.edges, j.rect, j.tx, j.ty, f));
+    }
+  state.SetLabel((kernel ? kernel->name : std::string("rect")) + " " + f.name());
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(jobs.size()));
+}
+
 void BM_InterpolateThreeVaryings(benchmark::State& state) {
   const std::vector<SetupTriangle<3>> tris = setUp(randomTriangles(1000, 500, 4), FixedPointFormat::d24_4());
   Varyings<3> v;
@@ -344,6 +372,17 @@ const bool kRegistered = [] {
       benchmark::RegisterBenchmark(("BM_RasterCoverage/" + k.name + "/" + std::to_string(bits)).c_str(),
                                    BM_RasterCoverage, k, bits)
           ->Unit(benchmark::kMicrosecond);
+  static const std::vector<CoverageKernel> kernels = availableCoverageKernels();
+  for (int bits : {4, 8}) {
+    benchmark::RegisterBenchmark(("BM_RasterSmallRect/rect/" + std::to_string(bits)).c_str(),
+                                 BM_RasterSmallRect, nullptr, bits)
+        ->Unit(benchmark::kMicrosecond);
+    for (const CoverageKernel& k : kernels)
+      benchmark::RegisterBenchmark(
+          ("BM_RasterSmallRect/" + k.name + "/" + std::to_string(bits)).c_str(),
+          BM_RasterSmallRect, &k, bits)
+          ->Unit(benchmark::kMicrosecond);
+  }
   return true;
 }();
 
