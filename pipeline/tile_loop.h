@@ -547,12 +547,14 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
     if (coverSmallRects) {
       const TileRect r = tileRectOf(t.bounds, tileX, tileY);
       if (r.x0 < r.x1 && r.y0 < r.y1 && (r.x1 - r.x0) * (r.y1 - r.y0) <= kSmallRectPixels) {
-        // A covered sample rules out Outside (an edge negative over the whole tile), and a
-        // rectangle smaller than the tile rules out Inside (the tile within the bounds): the
-        // kind is Partial, as coverTile finds. With no sample covered, coverTile tells Outside
-        // from Partial.
-        if (const CoverageMask m = coverRect(t.edges, r, tileX, tileY, cfg.format))
+        // A rectangle smaller than the tile rules out Inside (the tile within the bounds), and a
+        // covered sample rules out Outside (an edge negative over the whole tile): the kind is
+        // Partial, as coverTile finds. With no sample covered, it is Outside exactly when one
+        // edge is negative over the whole tile, else Partial with an empty mask.
+        const CoverageMask m = coverRect(t.edges, r, tileX, tileY, cfg.format);
+        if (m || !anEdgeOutsideTile(t.edges, tileX, tileY, cfg.format))
           return {m, TileCoverage::Partial};
+        return {0, TileCoverage::Outside};
       }
     }
     return coverTile(cfg.kernel, t.edges, t.bounds, tileX, tileY, cfg.format,
