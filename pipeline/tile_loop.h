@@ -250,7 +250,7 @@ RAST_TILE_INLINE __m128 clampDepth4(__m128 z) {
 // Depth of the triangle at the lanes of rows [rowBegin, rowEnd) of sample s: interpolateDepth at
 // each, so the per-sample and per-pixel paths agree bit for bit (tests/interpolation_test.cpp).
 // Written in SSE2 a row at a time: the loop GCC vectorised from interpolateDepth per lane spent
-// most of its instructions on the lane's column and row (10 % of a W2 tiny-10 frame).
+// most of its instructions on each lane's column and row (README, "Tile buffers").
 template <int N>
 RAST_TILE_INLINE void depthLanes(const SetupTriangle<N>& t, int x0, int y0, float offsetX, float offsetY,
                 int rowBegin, int rowEnd, TileLanes<float>& z) {
