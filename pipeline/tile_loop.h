@@ -549,10 +549,12 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
       if (r.x0 < r.x1 && r.y0 < r.y1 && (r.x1 - r.x0) * (r.y1 - r.y0) <= kSmallRectPixels) {
         // A rectangle smaller than the tile rules out Inside (the tile within the bounds), and a
         // covered sample rules out Outside (an edge negative over the whole tile): the kind is
-        // Partial, as coverTile finds. With no sample covered, it is Outside exactly when one
-        // edge is negative over the whole tile, else Partial with an empty mask.
+        // Partial, as coverTile finds. With no sample covered, the whole-tile test coverTile
+        // starts with (classifyTile: one edge negative at all four corners) tells Outside from
+        // Partial with an empty mask, without a second, whole-tile coverage.
         const CoverageMask m = coverRect(t.edges, r, tileX, tileY, cfg.format);
-        if (m || !anEdgeOutsideTile(t.edges, tileX, tileY, cfg.format))
+        if (m ||
+            classifyTile(t.edges, t.bounds, tileX, tileY, cfg.format) != TileCoverage::Outside)
           return {m, TileCoverage::Partial};
         return {0, TileCoverage::Outside};
       }

@@ -22,28 +22,4 @@ CoverageMask coverageScalar(const std::array<EdgeFunction, 3>& edges, const Pixe
   return mask & rectMask(bounds, tileX, tileY);
 }
 
-TileCoverage classifyTile(const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
-                          int tileX, int tileY, FixedPointFormat format, int32_t reach) {
-  return classifyTiles(edges, bounds, tileX, tileX, tileY, tileY, format, reach);
-}
-
-TileCoverage classifyTiles(const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
-                           int tileX0, int tileX1, int tileY0, int tileY1, FixedPointFormat format,
-                           int32_t reach) {
-  const int64_t sx0 = pixelCentreSubpixels(tileX0 * kTileSize, format) - reach;
-  const int64_t sy0 = pixelCentreSubpixels(tileY0 * kTileSize, format) - reach;
-  const int cols = (tileX1 - tileX0 + 1) * kTileSize, rows = (tileY1 - tileY0 + 1) * kTileSize;
-  bool allInside = true;
-  for (const EdgeFunction& e : edges) {
-    const int64_t e00 = e.at(sx0, sy0);
-    const EdgeExtent extent = edgeExtent(e, cols, rows, format, reach);
-    if (e00 + extent.highest < 0) return TileCoverage::Outside;
-    if (e00 + extent.lowest < 0) allInside = false;
-  }
-  const PixelRect tiles{tileX0 * kTileSize, tileY0 * kTileSize, (tileX1 + 1) * kTileSize,
-                        (tileY1 + 1) * kTileSize};
-  if (allInside && bounds.intersect(tiles) == tiles) return TileCoverage::Inside;
-  return TileCoverage::Partial;
-}
-
 }  // namespace rast

@@ -60,15 +60,16 @@ enum class TileCoverage { Outside, Inside, Partial };
 // Inside: every edge is >= 0 at all four and the tile lies inside `bounds`. With `reach` > 0 the
 // corners move out by `reach` subpixels, so the answer holds for every sample within `reach` of
 // a pixel centre (all samples of an MSAA pattern).
-TileCoverage classifyTile(const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
-                          int tileX, int tileY, FixedPointFormat format, int32_t reach = 0);
+// Inline (defined below): the back end takes it for empty small rectangles, once per entry.
+inline TileCoverage classifyTile(const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
+                                 int tileX, int tileY, FixedPointFormat format, int32_t reach = 0);
 
 // The same test for the rectangle of tiles [tileX0, tileX1] x [tileY0, tileY1] (inclusive) as a
 // whole (binning's coarse tiles): Outside says every tile of it is Outside, Inside that every
 // tile is Inside.
-TileCoverage classifyTiles(const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
-                           int tileX0, int tileX1, int tileY0, int tileY1, FixedPointFormat format,
-                           int32_t reach = 0);
+inline TileCoverage classifyTiles(const std::array<EdgeFunction, 3>& edges,
+                                  const PixelRect& bounds, int tileX0, int tileX1, int tileY0,
+                                  int tileY1, FixedPointFormat format, int32_t reach = 0);
 
 // An edge's least and greatest values over the samples of a rectangle of `colsPixels` x
 // `rowsPixels` pixel centres widened by `reach`, minus its value at the rectangle's top-left
@@ -84,6 +85,30 @@ inline EdgeExtent edgeExtent(const EdgeFunction& e, int colsPixels, int rowsPixe
   const int64_t dx = int64_t{e.a} * spanX, dy = int64_t{e.b} * spanY;
   return {std::min<int64_t>(dx, 0) + std::min<int64_t>(dy, 0),
           std::max<int64_t>(dx, 0) + std::max<int64_t>(dy, 0)};
+}
+
+inline TileCoverage classifyTile(const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
+                                 int tileX, int tileY, FixedPointFormat format, int32_t reach) {
+  return classifyTiles(edges, bounds, tileX, tileX, tileY, tileY, format, reach);
+}
+
+inline TileCoverage classifyTiles(const std::array<EdgeFunction, 3>& edges,
+                                  const PixelRect& bounds, int tileX0, int tileX1, int tileY0,
+                                  int tileY1, FixedPointFormat format, int32_t reach) {
+  const int64_t sx0 = pixelCentreSubpixels(tileX0 * kTileSize, format) - reach;
+  const int64_t sy0 = pixelCentreSubpixels(tileY0 * kTileSize, format) - reach;
+  const int cols = (tileX1 - tileX0 + 1) * kTileSize, rows = (tileY1 - tileY0 + 1) * kTileSize;
+  bool allInside = true;
+  for (const EdgeFunction& e : edges) {
+    const int64_t e00 = e.at(sx0, sy0);
+    const EdgeExtent extent = edgeExtent(e, cols, rows, format, reach);
+    if (e00 + extent.highest < 0) return TileCoverage::Outside;
+    if (e00 + extent.lowest < 0) allInside = false;
+  }
+  const PixelRect tiles{tileX0 * kTileSize, tileY0 * kTileSize, (tileX1 + 1) * kTileSize,
+                        (tileY1 + 1) * kTileSize};
+  if (allInside && bounds.intersect(tiles) == tiles) return TileCoverage::Inside;
+  return TileCoverage::Partial;
 }
 
 }  // namespace rast

@@ -72,19 +72,4 @@ template <int Blocks>  // of four columns: 1 for rectangles up to four wide, 2 u
                                 : coverRectColumns<2>(edges, rect, tileX, tileY, format);
 }
 
-// Whether one edge is negative at every pixel-centre sample of tile (tileX, tileY): coverTile's
-// Outside, decided by the same exact int64 values (the edge at the tile's first sample plus its
-// greatest rise over the tile) without the rest of its work. Where coverRect finds no sample of a
-// small rectangle covered, this tells the whole-tile outcome the statistics count: Outside, or
-// else Partial with an empty mask, as coverTile would return.
-[[gnu::always_inline]] inline bool anEdgeOutsideTile(const std::array<EdgeFunction, 3>& edges,
-                                                     int tileX, int tileY, FixedPointFormat format) {
-  const int64_t sx = pixelCentreSubpixels(tileX * kTileSize, format);
-  const int64_t sy = pixelCentreSubpixels(tileY * kTileSize, format);
-  bool outside = false;
-  for (const EdgeFunction& e : edges)
-    outside |= e.at(sx, sy) + edgeExtent(e, kTileSize, kTileSize, format, 0).highest < 0;
-  return outside;
-}
-
 }  // namespace rast
