@@ -109,7 +109,7 @@ Status renderW3BlendedFrame(Framebuffer& fb, const WindowGeometry& layers,
                             PipelineStatistics& stats, const ExecutionOptions& exec) {
   PipelineState state = workloadState(fb.width(), fb.height(), PositionSpace::Window);
   state.blend = BlendState::alphaBlend();
-  fb.clear(kClearColor, kClearDepth);
+  state.clear = ClearValues{kClearColor, kClearDepth};
   return drawFlatGeometry(fb, state, layers, stats, exec);
 }
 

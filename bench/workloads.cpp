@@ -42,15 +42,15 @@ Status renderLitMeshFrame(Framebuffer& fb, const LitMeshScene& scene, bool color
                           PipelineStatistics& stats, const ExecutionOptions& exec) {
   PipelineState state = workloadState(fb.width(), fb.height(), PositionSpace::Clip);
   state.colorWrite = colorWrite;
-  fb.clear(kClearColor, kClearDepth);
+  state.clear = ClearValues{kClearColor, kClearDepth};  // the frame's clear, as the draw's load op
   return drawLitMesh(fb, state, scene, stats, exec);
 }
 
 Status renderFlatFrame(Framebuffer& fb, const WindowGeometry& geometry,
                        PipelineStatistics& stats, const ExecutionOptions& exec) {
-  fb.clear(kClearColor, kClearDepth);
-  return drawFlatGeometry(fb, workloadState(fb.width(), fb.height(), PositionSpace::Window),
-                          geometry, stats, exec);
+  PipelineState state = workloadState(fb.width(), fb.height(), PositionSpace::Window);
+  state.clear = ClearValues{kClearColor, kClearDepth};
+  return drawFlatGeometry(fb, state, geometry, stats, exec);
 }
 
 }  // namespace

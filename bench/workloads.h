@@ -91,7 +91,8 @@ float overdrawLayerNdcZ(int layer);
 // All layers in one draw, in `order`: two triangles per layer, or a tiny-1000 grid per layer.
 WindowGeometry overdrawLayers(int width, int height, LayerOrder order, LayerShape shape);
 
-// ---- One frame on our pipeline: clear colour and depth, draw; the frame's counters in `stats`.
+// ---- One frame on our pipeline: clear colour and depth (the draw's load op,
+// PipelineState::clear), draw; the frame's counters in `stats`.
 // `fb` gives the frame size; the geometry must have been made for that size.
 
 Status renderW1Frame(Framebuffer& fb, const LitMeshScene& scene, PipelineStatistics& stats,

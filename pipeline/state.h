@@ -4,6 +4,8 @@
 
 #include <optional>
 
+#include <glm/vec4.hpp>
+
 #include "pipeline/blend.h"
 #include "rasterizer/edge_function.h"
 #include "pipeline/depth_format.h"
@@ -52,6 +54,17 @@ struct DepthState {
 // With compare Always no test runs: merge.depth_passed and merge.depth_failed count nothing (with
 // Never every covered sample fails). Always with writes off costs no depth access at all.
 
+// What a draw clears the framebuffer to before it draws: a render pass's load op "clear", as a
+// GPU's fast clear. Every colour and depth sample of the whole framebuffer (not only the viewport
+// or scissor) gets the bits Framebuffer::clear(color, depth) would give it, but tile by tile in
+// the back end: a touched tile starts from the values instead of being read back, an untouched
+// one is written with them, and no separate pass writes the framebuffer first. Counts are not
+// cleared (Framebuffer::clearCounts). A draw that fails validation clears nothing.
+struct ClearValues {
+  glm::vec4 color{0.0f};
+  float depth = 1.0f;
+};
+
 struct PipelineState {
   Viewport viewport;
   std::optional<PixelRect> scissor;
@@ -65,6 +78,7 @@ struct PipelineState {
   bool colorWrite = true;               // false: no colour access at all (a depth-only pass)
   uint8_t colorWriteMask = kWriteAll;   // channels written when colorWrite is on
   BlendState blend;
+  std::optional<ClearValues> clear;  // none: the draw starts from the framebuffer's contents
 };
 
 }  // namespace rast
