@@ -88,6 +88,12 @@ class TileBins {
       const int firstRow = int(part % size_t(bands)) * bandRows;
       const int endRow = std::min(tilesY_, firstRow + bandRows);
       Part& out = parts[part];
+      // Every triangle of the group that lies in the band touches at least one tile: reserving
+      // one entry per triangle saves the vector most of its doublings (and their copies).
+      size_t groupTriangles = 0;
+      for (size_t c = g * groupSize; c < std::min(chunks.size(), (g + 1) * groupSize); ++c)
+        groupTriangles += chunks[c].size();
+      out.tiles.reserve(groupTriangles / size_t(bands) + 16);
       for (size_t c = g * groupSize; c < std::min(chunks.size(), (g + 1) * groupSize); ++c)
         for (size_t i = 0; i < chunks[c].size(); ++i) {
           const PixelRect& b = chunks[c][i].bounds;
