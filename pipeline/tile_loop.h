@@ -457,22 +457,6 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
   const bool counting = cfg.target.counts != nullptr;
   const MergeTarget& target = cfg.target;
 
-  // The load op's values written straight to the framebuffer for the planes the tile loop does
-  // not keep in the tile buffer: colour with colour writes off, depth when the draw has no use
-  // for it.
-  auto fillRows = [&](auto* plane, auto value) RAST_TILE_LAMBDA {
-    for (int ly = 0; ly < rows; ++ly) {
-      auto* row = plane + size_t(y0 + ly) * cfg.width + x0;
-      std::fill(row, row + cols, value);
-    }
-  };
-  if (cfg.clearFirst) {
-    if (!depthUsed)
-      for (int s = 0; s < S; ++s) fillRows(target.depth + s * planeSize, cfg.clearDepth);
-    if (!cfg.colorWrite)
-      for (int s = 0; s < S; ++s) fillRows(target.color + s * planeSize, cfg.clearColor);
-  }
-
   // Lanes beyond the framebuffer's edge are never covered (bounds stop at the edge) and never
   // stored; they hold a copy of lane 0, a value of the tile's own, so that they cannot widen the
   // tile's depth bounds.
@@ -817,16 +801,20 @@ RAST_TILE_INLINE void streamFill(T* first, T* last, T value) {
   while (first != last) *first++ = value;
 }
 
-// The load op's values in `count` tiles from (tileX, tileY) along a tile row, every sample plane.
-RAST_TILE_INLINE void fillClearRun(const BackEndConfig& cfg, int tileX, int count, int tileY) {
+// The load op's values in `count` tiles from (tileX, tileY) along a tile row, every sample plane
+// of colour and of depth as asked.
+RAST_TILE_INLINE void fillClearRun(const BackEndConfig& cfg, int tileX, int count, int tileY,
+                                   bool color, bool depth) {
   const int x0 = tileX * kTileSize, x1 = std::min(cfg.width, (tileX + count) * kTileSize);
   const int y0 = tileY * kTileSize, y1 = std::min(cfg.height, y0 + kTileSize);
   const size_t planeSize = size_t(cfg.width) * size_t(cfg.height);
   for (int s = 0; s < cfg.samples.count; ++s)
     for (int y = y0; y < y1; ++y) {
       const size_t row = s * planeSize + size_t(y) * size_t(cfg.width);
-      streamFill(cfg.target.depth + row + x0, cfg.target.depth + row + x1, cfg.clearDepth);
-      streamFill(cfg.target.color + row + x0, cfg.target.color + row + x1, cfg.clearColor);
+      if (depth)
+        streamFill(cfg.target.depth + row + x0, cfg.target.depth + row + x1, cfg.clearDepth);
+      if (color)
+        streamFill(cfg.target.color + row + x0, cfg.target.color + row + x1, cfg.clearColor);
     }
 }
 
@@ -855,17 +843,24 @@ RAST_TILE_INLINE void rasterizeTileRange(int begin, int end, const TileBins& bin
                                          const SetupTriangles<N>& triangles, const PS& shader,
                                          const BackEndConfig& cfg, TileBuffer& buffer,
                                          PipelineStatistics& stats) {
+  const int tilesX = bins.tilesX();
+  // The load op's values, written a framebuffer row at a time along runs of tiles: long runs of
+  // stores, where tile by tile they were 32-byte pieces of rows a framebuffer width apart (W1 at
+  // 2 threads: the frame 5 % slower than clear() first). First the planes the tile loop does not
+  // keep (colour with colour writes off, depth when unused), over the whole range.
+  const bool keptColor = cfg.colorWrite, keptDepth = cfg.depthUsed();
+  if (cfg.clearFirst && !(keptColor && keptDepth))
+    for (int first = begin; first != end;) {
+      const int last = std::min(end, (first / tilesX + 1) * tilesX);
+      fillClearRun(cfg, first % tilesX, last - first, first / tilesX, !keptColor, !keptDepth);
+      first = last;
+    }
   for (int tile = begin; tile != end; ++tile) {
     if (cfg.clearFirst && bins.empty(tile)) {
-      // A run of untouched tiles along a tile row gets the load op's values a framebuffer row
-      // at a time: long runs of stores, where tile by tile they were 32-byte pieces of rows a
-      // framebuffer width apart (W1 at 2 threads: the frame 5 % slower than clear() first).
+      // Then the kept planes of each run of untouched tiles along a tile row.
       int runEnd = tile + 1;
-      while (runEnd != end && runEnd % bins.tilesX() != 0 && bins.empty(runEnd)) ++runEnd;
-      fillClearRun(cfg, tile % bins.tilesX(), runEnd - tile, tile / bins.tilesX());
-      // Non-temporal stores are weakly ordered: drained before the task ends and another
-      // thread may read the framebuffer.
-      _mm_sfence();
+      while (runEnd != end && runEnd % tilesX != 0 && bins.empty(runEnd)) ++runEnd;
+      fillClearRun(cfg, tile % tilesX, runEnd - tile, tile / tilesX, keptColor, keptDepth);
       tile = runEnd - 1;
       continue;
     }
@@ -876,6 +871,9 @@ RAST_TILE_INLINE void rasterizeTileRange(int begin, int end, const TileBins& bin
                          bins.entries(tile, buffer.mergedEntries), triangles, shader, cfg, buffer,
                          stats);
   }
+  // Non-temporal stores are weakly ordered: drained before the task ends and another thread may
+  // read the framebuffer.
+  if (cfg.clearFirst) _mm_sfence();
 }
 
 template <PixelShader PS, int N>
