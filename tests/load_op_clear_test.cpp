@@ -1,6 +1,6 @@
 // The draw's load op (PipelineState::clear) leaves exactly what Framebuffer::clear followed by the
 // same draw leaves: every colour and depth sample, the counts and every statistic, whatever the
-// state, the framebuffer's size (edge tiles), the samples per pixel and the thread count.
+// state, the framebuffer's size (edge tiles), the samples per pixel and the thread count (1, 2, 4).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -74,7 +74,7 @@ Outcome render(const Size& size, PipelineState state, const ClearValues& clear, 
 template <class Draw>
 void expectLoadOpEqualsClear(const Size& size, const PipelineState& state, const ClearValues& clear,
                              const Draw& drawCall) {
-  for (int threads : {1, 2}) {
+  for (int threads : {1, 2, 4}) {
     ExecutionOptions exec;
     exec.threads = threads;
     SCOPED_TRACE(std::to_string(threads) + " threads");
