@@ -13,6 +13,12 @@
 //   static constexpr bool kPerTriangle = true;  the result depends on nothing but primitiveId and
 //                                               frontFacing (and kVaryings == 0): run once per
 //                                               triangle and tile, not per pixel
+//   static constexpr bool kWholeRows = true;    safe on any input: it may also run on the lanes
+//                                               of a tile row that no triangle covers (their
+//                                               varyings extrapolated, even infinite or NaN),
+//                                               whose results are thrown away; then it runs on
+//                                               whole rows of eight lanes, which the compiler
+//                                               vectorises (kMayDiscard and kDerivatives false)
 // Shaders are called through templates, so they inline into the stage loops.
 #pragma once
 

@@ -287,6 +287,14 @@ constexpr bool kTakesDerivatives = requires { requires PS::kDerivatives; };
 template <class PS>
 constexpr bool kShadesPerTriangle = requires { requires PS::kPerTriangle; };
 
+// Shaders that declare `static constexpr bool kWholeRows = true` (shader.h) run on every lane of
+// the rows a triangle covers, in a loop the compiler vectorises; each lane's result has the bits
+// a run on that lane alone gives (the same IEEE operations, no contraction, -fno-math-errno lets
+// sqrt be the vector instruction).
+template <class PS>
+constexpr bool kShadesWholeRows =
+    requires { requires PS::kWholeRows; } && !PS::kMayDiscard && !kTakesDerivatives<PS>;
+
 // The rows [begin, end) of a tile that a non-empty mask touches.
 struct RowRange {
   int begin, end;
@@ -349,6 +357,15 @@ RAST_TILE_INLINE void packLanes(const ShadedColors& c, CoverageMask lanes, TileL
   }
 }
 
+// RGBA8 of every lane of rows [rowBegin, rowEnd) (packColor), for shaders run on whole rows: the
+// compiler vectorises it (-fno-trapping-math lets it if-convert the clamp's float compares).
+RAST_TILE_INLINE void packRows(const ShadedColors& c, int rowBegin, int rowEnd,
+                               TileLanes<PackedColor>& out) {
+  for (int i = rowBegin * kTileSize; i < rowEnd * kTileSize; ++i)
+    out[i] = colorByte(c.r[i]) | (colorByte(c.g[i]) << 8) | (colorByte(c.b[i]) << 16) |
+             (colorByte(c.a[i]) << 24);
+}
+
 // Runs the pixel shader on the pixels of `pixels` and stores their colours in `out`; returns the
 // pixels that were not discarded.
 template <PixelShader PS, int N>
@@ -402,6 +419,27 @@ RAST_TILE_INLINE CoverageMask shadePixels(const SetupTriangle<N>& t, int x0, int
           fragment.varyings = v[k];
           shadeOne(bit, fragment);
         }
+      }
+  } else if constexpr (kShadesWholeRows<PS>) {
+    const RowRange rows = coveredRows(pixels);
+    TileVaryings<N> varyings;
+    interpolateRows<N>(t, x0, y0, rows.begin, rows.end, varyings);
+    for (int row = rows.begin; row < rows.end; ++row)
+      for (int lx = 0; lx < kTileSize; ++lx) {
+        const int bit = row * kTileSize + lx;
+        Fragment<N> fragment;
+        for (int k = 0; k < N; ++k) fragment.varyings[k] = varyings[k][bit];
+        fragment.x = x0 + lx;
+        fragment.y = y0 + row;
+        fragment.depth = interpolateDepth(t, float(fragment.x - t.bounds.x0),
+                                          float(fragment.y - t.bounds.y0));
+        fragment.frontFacing = t.frontFacing;
+        fragment.primitiveId = t.primitiveId;
+        const glm::vec4 c = shader(fragment).color;
+        out.r[bit] = c.r;
+        out.g[bit] = c.g;
+        out.b[bit] = c.b;
+        out.a[bit] = c.a;
       }
   } else {
     const RowRange rows = coveredRows(pixels);
@@ -768,6 +806,10 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
       } else if constexpr (kShadesPerTriangle<PS>) {
         const PackedColor c = packColor(triangleColor);
         for (int s = 0; s < S; ++s) fillLanesWhere(mask[s], c, tile.color[s]);
+      } else if constexpr (kShadesWholeRows<PS>) {
+        const RowRange rows = coveredRows(anySample);
+        packRows(shaded, rows.begin, rows.end, packed);
+        for (int s = 0; s < S; ++s) copyLanesWhere(mask[s], packed, tile.color[s]);
       } else {
         packLanes(shaded, anySample, packed);
         for (int s = 0; s < S; ++s) copyLanesWhere(mask[s], packed, tile.color[s]);

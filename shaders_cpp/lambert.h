@@ -14,6 +14,7 @@ namespace rast {
 struct LambertShader {
   static constexpr int kVaryings = 6;
   static constexpr bool kMayDiscard = false;
+  static constexpr bool kWholeRows = true;  // any input is safe (shader.h)
   glm::vec3 albedo{0.8f};
   glm::vec3 ambient{0.08f};
   glm::vec3 lightPosition{0.0f, 10.0f, 10.0f};

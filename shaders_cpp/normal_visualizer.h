@@ -10,6 +10,7 @@ namespace rast {
 struct NormalVisualizerShader {
   static constexpr int kVaryings = 3;
   static constexpr bool kMayDiscard = false;
+  static constexpr bool kWholeRows = true;  // any input is safe (shader.h)
 
   PixelResult operator()(const Fragment<3>& f) const {
     const glm::vec3 n = glm::normalize(glm::vec3(f.varyings[0], f.varyings[1], f.varyings[2]));

@@ -13,6 +13,7 @@ namespace rast {
 struct W1LambertShader {
   static constexpr int kVaryings = 3;
   static constexpr bool kMayDiscard = false;
+  static constexpr bool kWholeRows = true;  // any input is safe (shader.h)
   glm::vec3 lightDirection = glm::normalize(glm::vec3(0.35f, 0.55f, 0.76f));  // towards the light
 
   PixelResult operator()(const Fragment<3>& f) const {
