@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <glm/vec4.hpp>
+#include <xmmintrin.h>
 
 #include "pipeline/status.h"
 #include "rasterizer/sample_pattern.h"
@@ -18,10 +19,13 @@ namespace rast {
 // RGBA8 packed with red in the low byte (the byte order of an RGBA image in memory).
 using PackedColor = uint32_t;
 
-// Clamps each channel to [0, 1], written so that NaN fails both comparisons and becomes 0 (a NaN
-// never reaches the integer conversion), and rounds to the nearest of 0..255.
+// Clamps each channel to [0, 1], NaN to 0 (a NaN never reaches the integer conversion), and rounds
+// to the nearest of 0..255: v > 0 ? (v < 1 ? v : 1) : 0, as maxss(v, 0) = (v > 0 ? v : 0) then
+// minss(that, 1), the same value for every v in two instructions whatever the compiler's float
+// options (packRowColors in pipeline/tile_loop.h does the same four lanes at a time).
 [[gnu::always_inline]] inline uint32_t colorByte(float v) {
-  const float clamped = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+  const float clamped =
+      _mm_cvtss_f32(_mm_min_ss(_mm_max_ss(_mm_set_ss(v), _mm_setzero_ps()), _mm_set_ss(1.0f)));
   return uint32_t(clamped * 255.0f + 0.5f);
 }
 // Forced inline: the tile loop packs once per shaded lane (W1) or once per (triangle, tile) for a

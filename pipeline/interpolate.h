@@ -2,6 +2,8 @@
 // (v/w and 1/w are linear in screen space; one division per pixel recovers v).
 #pragma once
 
+#include <xmmintrin.h>
+
 #include "pipeline/setup.h"
 
 namespace rast {
@@ -12,7 +14,11 @@ float interpolateDepth(const SetupTriangle<N>& t, float dx, float dy) {
   const float z = t.depth.at(dx, dy);
   // Extrapolating the plane to a pixel centre a rounding step outside the vertices' depth range
   // must not leave [0, 1], the range of every depth format.
-  return z < 0.0f ? 0.0f : (z > 1.0f ? 1.0f : z);
+  // z < 0 ? 0 : (z > 1 ? 1 : z) as minss(1, z) = (1 < z ? 1 : z), then maxss(0, that) (its sign
+  // is z's wherever it matters): the same bits, NaN and -0 included, in two instructions whatever
+  // the compiler's float options (under -fno-trapping-math GCC made the ternaries conditional
+  // moves through integer registers).
+  return _mm_cvtss_f32(_mm_max_ss(_mm_setzero_ps(), _mm_min_ss(_mm_set_ss(1.0f), _mm_set_ss(z))));
 }
 
 template <int N>

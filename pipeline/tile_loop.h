@@ -92,30 +92,34 @@ struct TileDepthBounds {
 
 // The bounds of the first `samples` planes of a tile's depth. All 64 lanes: the padding lanes of
 // an edge tile hold one of the tile's own stored values (see load), so they cannot widen the
-// bounds beyond what the tile holds. One accumulator per column, so that the compiler keeps
-// eight lanes in a vector (it does not vectorise a min through one scalar under IEEE rules); the
-// set's min and max do not depend on the order, except for the sign of a zero, which no compare
-// sees. NaN lanes fail both compares, so they leave min and max alone and set hasNaN.
+// bounds beyond what the tile holds. One accumulator per column, four columns to an SSE2 register:
+// minps(d, m) is d < m ? d : m and maxps(d, m) is d > m ? d : m, so a NaN lane (it fails both
+// compares) leaves them alone and sets hasNaN. The set's min and max do not depend on the order,
+// except for the sign of a zero, which no compare sees. Intrinsics, not a loop left to the
+// compiler: GCC turns that loop into scalar conditional moves under -fno-trapping-math.
 RAST_TILE_INLINE TileDepthBounds tileDepthBounds(const std::array<TileLanes<float>, kMaxSamples>& depth,
                                                  int samples) {
-  std::array<float, kTileSize> mn, mx;
-  std::array<int, kTileSize> nan{};
-  mn.fill(std::numeric_limits<float>::infinity());
-  mx.fill(-std::numeric_limits<float>::infinity());
+  __m128 mnLeft = _mm_set1_ps(std::numeric_limits<float>::infinity()), mnRight = mnLeft;
+  __m128 mxLeft = _mm_set1_ps(-std::numeric_limits<float>::infinity()), mxRight = mxLeft;
+  __m128 nan = _mm_setzero_ps();
   for (int s = 0; s < samples; ++s)
-    for (int ly = 0; ly < kTileSize; ++ly)
-      for (int lx = 0; lx < kTileSize; ++lx) {
-        const float d = depth[s][ly * kTileSize + lx];
-        nan[lx] |= d != d;
-        mn[lx] = d < mn[lx] ? d : mn[lx];
-        mx[lx] = d > mx[lx] ? d : mx[lx];
-      }
-  TileDepthBounds b{mn[0], mx[0], nan[0] != 0, true};
-  for (int lx = 1; lx < kTileSize; ++lx) {
-    b.min = mn[lx] < b.min ? mn[lx] : b.min;
-    b.max = mx[lx] > b.max ? mx[lx] : b.max;
-    b.hasNaN |= nan[lx] != 0;
-  }
+    for (int ly = 0; ly < kTileSize; ++ly) {
+      const __m128 left = _mm_loadu_ps(&depth[s][ly * kTileSize]);
+      const __m128 right = _mm_loadu_ps(&depth[s][ly * kTileSize + 4]);
+      nan = _mm_or_ps(nan, _mm_or_ps(_mm_cmpunord_ps(left, left), _mm_cmpunord_ps(right, right)));
+      mnLeft = _mm_min_ps(left, mnLeft);
+      mnRight = _mm_min_ps(right, mnRight);
+      mxLeft = _mm_max_ps(left, mxLeft);
+      mxRight = _mm_max_ps(right, mxRight);
+    }
+  // Across the eight columns, by halves: no accumulator holds a NaN (minps and maxps keep their
+  // second operand when the first is NaN), so any order gives the set's min and max.
+  __m128 mn = _mm_min_ps(mnLeft, mnRight), mx = _mm_max_ps(mxLeft, mxRight);
+  mn = _mm_min_ps(mn, _mm_shuffle_ps(mn, mn, _MM_SHUFFLE(1, 0, 3, 2)));
+  mx = _mm_max_ps(mx, _mm_shuffle_ps(mx, mx, _MM_SHUFFLE(1, 0, 3, 2)));
+  mn = _mm_min_ps(mn, _mm_shuffle_ps(mn, mn, _MM_SHUFFLE(2, 3, 0, 1)));
+  mx = _mm_max_ps(mx, _mm_shuffle_ps(mx, mx, _MM_SHUFFLE(2, 3, 0, 1)));
+  TileDepthBounds b{_mm_cvtss_f32(mn), _mm_cvtss_f32(mx), _mm_movemask_ps(nan) != 0, true};
   return b;
 }
 
@@ -357,13 +361,26 @@ RAST_TILE_INLINE void packLanes(const ShadedColors& c, CoverageMask lanes, TileL
   }
 }
 
-// RGBA8 of every lane of rows [rowBegin, rowEnd) (packColor), for shaders run on whole rows: the
-// compiler vectorises it (-fno-trapping-math lets it if-convert the clamp's float compares).
-RAST_TILE_INLINE void packRows(const ShadedColors& c, int rowBegin, int rowEnd,
-                               TileLanes<PackedColor>& out) {
-  for (int i = rowBegin * kTileSize; i < rowEnd * kTileSize; ++i)
-    out[i] = colorByte(c.r[i]) | (colorByte(c.g[i]) << 8) | (colorByte(c.b[i]) << 16) |
-             (colorByte(c.a[i]) << 24);
+// One channel of colorByte on four lanes: maxps(v, 0) then minps(that, 1), times 255 plus a half,
+// truncated (every value lies in [0.5, 255.5], where cvttps2dq truncates as the conversion to
+// uint32_t does).
+RAST_TILE_INLINE __m128i colorBytes4(__m128 v) {
+  const __m128 clamped = _mm_min_ps(_mm_max_ps(v, _mm_setzero_ps()), _mm_set1_ps(1.0f));
+  return _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(clamped, _mm_set1_ps(255.0f)), _mm_set1_ps(0.5f)));
+}
+
+// RGBA8 of every lane of rows [rowBegin, rowEnd) (packColor's bits), four lanes at a time, for
+// shaders run on whole rows.
+RAST_TILE_INLINE void packRowColors(const ShadedColors& c, int rowBegin, int rowEnd,
+                                    TileLanes<PackedColor>& out) {
+  for (int i = rowBegin * kTileSize; i < rowEnd * kTileSize; i += 4) {
+    const __m128i rgba = _mm_or_si128(
+        _mm_or_si128(colorBytes4(_mm_loadu_ps(&c.r[i])),
+                     _mm_slli_epi32(colorBytes4(_mm_loadu_ps(&c.g[i])), 8)),
+        _mm_or_si128(_mm_slli_epi32(colorBytes4(_mm_loadu_ps(&c.b[i])), 16),
+                     _mm_slli_epi32(colorBytes4(_mm_loadu_ps(&c.a[i])), 24)));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(&out[i]), rgba);
+  }
 }
 
 // Runs the pixel shader on the pixels of `pixels` and stores their colours in `out`; returns the
@@ -808,7 +825,7 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
         for (int s = 0; s < S; ++s) fillLanesWhere(mask[s], c, tile.color[s]);
       } else if constexpr (kShadesWholeRows<PS>) {
         const RowRange rows = coveredRows(anySample);
-        packRows(shaded, rows.begin, rows.end, packed);
+        packRowColors(shaded, rows.begin, rows.end, packed);
         for (int s = 0; s < S; ++s) copyLanesWhere(mask[s], packed, tile.color[s]);
       } else {
         packLanes(shaded, anySample, packed);
