@@ -13,6 +13,7 @@
 #include "pipeline/draw.h"
 #include "rasterizer/coverage.h"
 #include "shaders_cpp/window_space.h"
+#include "tests/window_draw.h"
 
 namespace rast {
 namespace {
@@ -87,11 +88,8 @@ Scene layeredScene(uint32_t seed) {
   return s;
 }
 
-struct Result {
-  std::vector<PackedColor> color;
-  std::vector<float> depth;
-  PipelineStatistics stats;
-};
+using Result = testing_support::DrawnFrame;  // counts unused
+using testing_support::sameFrame;
 
 template <class PS>
 Result render(const Scene& scene, const PipelineState& state, int samples, float clearDepth,
@@ -113,14 +111,6 @@ Result render(const Scene& scene, const PipelineState& state, int samples, float
   return r;
 }
 
-// Colour, depth (as bits) and statistics equal.
-testing::AssertionResult sameResult(const Result& a, const Result& b) {
-  if (a.color != b.color) return testing::AssertionFailure() << "colour differs";
-  if (std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)) != 0)
-    return testing::AssertionFailure() << "depth differs";
-  if (!(a.stats == b.stats)) return testing::AssertionFailure() << "statistics differ";
-  return testing::AssertionSuccess();
-}
 
 TEST(TileShortcuts, PerTriangleShadingAndDeferredWritesChangeNoBit) {
   const Scene scene = layeredScene(7);
@@ -143,10 +133,10 @@ TEST(TileShortcuts, PerTriangleShadingAndDeferredWritesChangeNoBit) {
                                             << ", compare " << int(compare) << ", depth write "
                                             << depthWrite << ", colour write " << colorWrite);
             const Result perPixel = render<PerPixelShader>(scene, state, samples, clearDepth);
-            ASSERT_TRUE(sameResult(render<PerTriangleShader>(scene, state, samples, clearDepth),
+            ASSERT_TRUE(sameFrame(render<PerTriangleShader>(scene, state, samples, clearDepth),
                                    perPixel));
             // The x86-64 baseline build of the tile loop against the best one (AVX2 here).
-            ASSERT_TRUE(sameResult(render<PerPixelShader>(scene, state, samples, clearDepth,
+            ASSERT_TRUE(sameFrame(render<PerPixelShader>(scene, state, samples, clearDepth,
                                                           BackEndTarget::Baseline),
                                    perPixel));
             ++cases;

@@ -14,6 +14,7 @@
 #include "shaders_cpp/normal_visualizer.h"
 #include "shaders_cpp/transform.h"
 #include "shaders_cpp/w1_lambert.h"
+#include "tests/window_draw.h"
 
 namespace rast {
 namespace {
@@ -43,19 +44,8 @@ struct ClipVertexShader {
   }
 };
 
-struct Result {
-  std::vector<PackedColor> color;
-  std::vector<float> depth;
-  PipelineStatistics stats;
-};
-
-testing::AssertionResult sameResult(const Result& a, const Result& b) {
-  if (a.color != b.color) return testing::AssertionFailure() << "colour differs";
-  if (std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)) != 0)
-    return testing::AssertionFailure() << "depth differs";
-  if (!(a.stats == b.stats)) return testing::AssertionFailure() << "statistics differ";
-  return testing::AssertionSuccess();
-}
+using Result = testing_support::DrawnFrame;  // counts unused
+using testing_support::sameFrame;
 
 PipelineState clipState(int width, int height) {
   PipelineState state;
@@ -93,15 +83,15 @@ TEST(WholeRowShading, BunnyEqualsPerPixelShading) {
       const std::span<const MeshVertex> vertices = scene.mesh.vertices;
       const Result rows = render<W1LambertShader>(kWidth, kHeight, samples, state, vs, vertices,
                                                   scene.mesh.indices, target);
-      EXPECT_TRUE(sameResult(rows, render<PerPixel<W1LambertShader>>(
+      EXPECT_TRUE(sameFrame(rows, render<PerPixel<W1LambertShader>>(
                                        kWidth, kHeight, samples, state, vs, vertices,
                                        scene.mesh.indices, target)));
-      EXPECT_TRUE(sameResult(render<NormalVisualizerShader>(kWidth, kHeight, samples, state, vs,
+      EXPECT_TRUE(sameFrame(render<NormalVisualizerShader>(kWidth, kHeight, samples, state, vs,
                                                             vertices, scene.mesh.indices, target),
                              render<PerPixel<NormalVisualizerShader>>(
                                  kWidth, kHeight, samples, state, vs, vertices,
                                  scene.mesh.indices, target)));
-      EXPECT_TRUE(sameResult(render<LambertShader>(kWidth, kHeight, samples, state, vs, vertices,
+      EXPECT_TRUE(sameFrame(render<LambertShader>(kWidth, kHeight, samples, state, vs, vertices,
                                                    scene.mesh.indices, target),
                              render<PerPixel<LambertShader>>(kWidth, kHeight, samples, state, vs,
                                                              vertices, scene.mesh.indices,
@@ -139,7 +129,7 @@ TEST(WholeRowShading, NonFiniteLanesStayOutOfTheImage) {
       const Result rows =
           render<W1LambertShader>(kWidth, kHeight, samples, state, vs,
                                   std::span<const ClipVertex>(vertices), indices, target);
-      EXPECT_TRUE(sameResult(rows, render<PerPixel<W1LambertShader>>(
+      EXPECT_TRUE(sameFrame(rows, render<PerPixel<W1LambertShader>>(
                                        kWidth, kHeight, samples, state, vs,
                                        std::span<const ClipVertex>(vertices), indices, target)));
       EXPECT_GT(rows.stats.fragmentsWritten, 5000u);

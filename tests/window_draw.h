@@ -2,6 +2,7 @@
 // what it left: the tests that compare how a draw ran (threads, kernels, memory) start here.
 #pragma once
 
+#include <cstring>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -18,6 +19,17 @@ struct DrawnFrame {
   std::vector<uint32_t> counts;  // empty unless counted
   PipelineStatistics stats;
 };
+
+// Colour, depth (as bits: float == would call -0 and 0 equal), counts and statistics equal.
+inline testing::AssertionResult sameFrame(const DrawnFrame& a, const DrawnFrame& b) {
+  if (a.color != b.color) return testing::AssertionFailure() << "colour differs";
+  if (a.depth.size() != b.depth.size() ||
+      std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)) != 0)
+    return testing::AssertionFailure() << "depth differs";
+  if (a.counts != b.counts) return testing::AssertionFailure() << "counts differ";
+  if (!(a.stats == b.stats)) return testing::AssertionFailure() << "statistics differ";
+  return testing::AssertionSuccess();
+}
 
 inline DrawnFrame drawWindowTriangles(int width, int height, const std::vector<WindowVertex>& vertices,
                                       const std::vector<uint32_t>& indices, glm::vec4 color,
