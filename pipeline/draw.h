@@ -36,6 +36,16 @@ Status validateDraw(const Framebuffer& fb, const PipelineState& state, size_t ve
 // Viewport, scissor and framebuffer, intersected: the only pixels a draw may touch.
 PixelRect drawableRect(const Framebuffer& fb, const PipelineState& state);
 
+// What a draw runs in place of its pixel shader when it writes no colour and the shader cannot
+// discard: the back end then runs no shader at all, and this one reads no varying, so the front
+// end carries none (no varying planes set up, smaller set-up triangles for binning and the back
+// end to read). It is never called.
+struct NoPixelShader {
+  static constexpr int kVaryings = 0;
+  static constexpr bool kMayDiscard = false;
+  PixelResult operator()(const Fragment<0>&) const { return {}; }
+};
+
 // Renders the draw into `fb` and adds its counters to `stats`. On an error nothing is drawn.
 // `exec` chooses threads and coverage kernel; no choice changes a bit of the output.
 template <VertexShader VS, PixelShader PS>
@@ -43,6 +53,16 @@ Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>&
             PipelineStatistics& stats, const ExecutionOptions& exec = {}) {
   constexpr int N = PS::kVaryings;
   static_assert(N <= VS::kVaryings, "the pixel shader reads more varyings than the vertex shader writes");
+  // A depth-only pass pays for no varying (W4: the bunny's normals). Its depth, counts and
+  // statistics are the same either way: depth planes do not depend on the varyings, and no
+  // counter counts them (tests/depth_only_test.cpp).
+  if constexpr (N > 0 && !PS::kMayDiscard)
+    if (!state.colorWrite) {
+      const NoPixelShader none;
+      return draw(fb, state,
+                  DrawCall<VS, NoPixelShader>{call.vertices, call.indices, call.vertexShader, none},
+                  stats, exec);
+    }
   if (Status s = validateDraw(fb, state, call.vertices.size(), call.indices); !s) return s;
   PipelineStatistics local;
   tbb::task_arena arena(exec.threads > 0 ? exec.threads : tbb::task_arena::automatic);
