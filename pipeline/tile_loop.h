@@ -202,6 +202,22 @@ RAST_TILE_INLINE CoverageMask depthTestInline(CompareOp op, const TileLanes<floa
   return mask;
 }
 
+// One fragment's compare by the same switch: the test of a few covered pixels one at a time.
+RAST_TILE_INLINE bool depthPassesInline(CompareOp op, float z, float stored) {
+  using enum CompareOp;
+  switch (op) {
+    case Never: return depthPasses<Never>(z, stored);
+    case Less: return depthPasses<Less>(z, stored);
+    case Equal: return depthPasses<Equal>(z, stored);
+    case LessEqual: return depthPasses<LessEqual>(z, stored);
+    case Greater: return depthPasses<Greater>(z, stored);
+    case NotEqual: return depthPasses<NotEqual>(z, stored);
+    case GreaterEqual: return depthPasses<GreaterEqual>(z, stored);
+    case Always: return true;
+  }
+  return true;
+}
+
 // What the back end does, fixed for the whole draw.
 struct BackEndConfig {
   FixedPointFormat format;
@@ -606,6 +622,9 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
   // compare the two. Up to 36 pixels (6x6): always fewer than the tile's 64, which the kind
   // Partial below relies on.
   constexpr int kSmallRectPixels = 36;
+  // Up to this many covered pixels a triangle's depth is tested pixel by pixel (fewPixels).
+  constexpr uint64_t kFewPixels = 8;
+  const bool testFewPixels = S == 1 && useBounds && cfg.kernel.simd != nullptr;
   static_assert(kSmallRectPixels < kTileLanes);
   const bool coverSmallRects =
       S == 1 && cfg.rasterMode == RasterMode::FixedPoint && cfg.kernel.simd != nullptr;
@@ -669,7 +688,42 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
     stats.samplesCovered += covered;
 
     float triMin = 0, triMax = 0;
-    if (useBounds) {
+    // A triangle that covers a few pixels of the tile (small triangles, and the edges and corners
+    // of larger ones; each of W2 tiny-1's covers one) has its depth computed and tested at
+    // those pixels alone, instead of at the tile's corners against the tile's stored bounds (which
+    // cost a pass over the 64 stored lanes the first time in a tile) and then along rows of eight
+    // lanes. The same interpolateDepth, quantising and compare at each covered pixel as on the
+    // lanes (depthLanes and depthTestLanes are written to agree with them bit for bit), so the
+    // same depths, passes and counts; triMin and triMax become the range of the passing depths,
+    // which is all the stored bounds need below. As with coverSmallRects, the scalar reference
+    // kernel keeps the lane path, and the tests compare the two.
+    const bool fewPixels = testFewPixels && covered <= kFewPixels;
+    if (fewPixels) {
+      writePending();
+      const float dx0 = float(x0 - t.bounds.x0) + cfg.samples.offsetXPixels(0);
+      const float dy0 = float(y0 - t.bounds.y0) + cfg.samples.offsetYPixels(0);
+      CoverageMask passed = 0;
+      float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+      bool nan = false;
+      for (CoverageMask m = mask[0]; m; m &= m - 1) {
+        const int i = std::countr_zero(m);
+        float zi = interpolateDepth(t, dx0 + float(i % kTileSize), dy0 + float(i / kTileSize));
+        if (cfg.quantize) zi = cfg.quantize(zi);
+        if (!depthPassesInline(cfg.compare, zi, tile.depth[0][i])) continue;
+        passed |= CoverageMask{1} << i;
+        z[0][i] = zi;
+        lo = std::min(lo, zi);
+        hi = std::max(hi, zi);
+        nan |= zi != zi;
+      }
+      const uint64_t passes = uint64_t(popcount64(passed));
+      stats.depthTestsPassed += passes;
+      stats.depthTestsFailed += covered - passes;
+      if (!passed) continue;
+      mask[0] = anySample = passed;
+      triMin = nan ? std::numeric_limits<float>::quiet_NaN() : lo;
+      triMax = hi;
+    } else if (useBounds) {
       const float ax = float(x0 - t.bounds.x0), ay = float(y0 - t.bounds.y0);
       const float bx = ax + float(cols - 1), by = ay + float(rows - 1);
       const PlaneEquation& plane = t.depth;
@@ -707,7 +761,7 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
       }
     }
 
-    bool coversAll = mayDefer;
+    bool coversAll = mayDefer && !fewPixels;
     for (int s = 0; s < S && coversAll; ++s) coversAll = mask[s] == kFullMask;
     if (coversAll && (!depthRead || (useBounds && allPass(cfg.compare, triMin, triMax, stored)))) {
       if (depthRead) stats.depthTestsPassed += covered;
@@ -737,7 +791,7 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
     // build) does not let a lambda capture a binding.
     const RowRange touched = coveredRows(anySample);
     const int rowBegin = touched.begin, rowEnd = touched.end;
-    if (depthUsed)
+    if (depthUsed && !fewPixels)
       for (int s = 0; s < S; ++s) {
         depthLanes(t, x0, y0, cfg.samples.offsetXPixels(s), cfg.samples.offsetYPixels(s),
                    rowBegin, rowEnd, z[s]);
@@ -754,12 +808,13 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
       }
       return passed;
     };
-    if (earlyTest && !(useBounds && allPass(cfg.compare, triMin, triMax, stored))) {
+    const bool earlyLaneTest = earlyTest && !fewPixels;  // (fewPixels tested above)
+    if (earlyLaneTest && !(useBounds && allPass(cfg.compare, triMin, triMax, stored))) {
       const uint64_t passed = depthTest();
       stats.depthTestsPassed += passed;
       stats.depthTestsFailed += covered - passed;
       if (!anySample) continue;
-    } else if (earlyTest) {
+    } else if (earlyLaneTest) {
       stats.depthTestsPassed += covered;
     }
 
