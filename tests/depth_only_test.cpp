@@ -20,17 +20,8 @@
 namespace rast {
 namespace {
 
-struct ClipVertex {
-  glm::vec4 position;
-  glm::vec3 normal;
-};
-struct ClipVertexShader {
-  using Vertex = ClipVertex;
-  static constexpr int kVaryings = 3;
-  ShadedVertex<3> operator()(const Vertex& v) const {
-    return {v.position, {v.normal.x, v.normal.y, v.normal.z}};
-  }
-};
+using testing_support::ClipVertex;
+using testing_support::ClipVertexShader;
 
 // Discards where the normal's x is negative: half the bunny's pixels.
 struct DiscardingShader {
@@ -46,15 +37,10 @@ template <class PS, class VS>
 testing_support::DrawnFrame render(int width, int height, int samples, const PipelineState& state,
                                    const VS& vs, std::span<const typename VS::Vertex> vertices,
                                    std::span<const uint32_t> indices, int threads) {
-  Framebuffer fb(width, height, /*counts=*/true, samples);
   ExecutionOptions exec;
   exec.threads = threads;
-  testing_support::DrawnFrame f;
-  EXPECT_TRUE(draw(fb, state, DrawCall<VS, PS>{vertices, indices, vs, PS{}}, f.stats, exec));
-  f.color = fb.colorPlane();
-  f.depth = fb.depthPlane();
-  f.counts = fb.countPlane();
-  return f;
+  return testing_support::drawFrame<PS>(width, height, samples, true, state, vs, vertices,
+                                        indices, exec);
 }
 
 // The draw with colour writes off against the same draw with them on: the depth-only one's colour

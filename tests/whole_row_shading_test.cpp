@@ -32,18 +32,8 @@ struct PerPixel {
 };
 static_assert(!kShadesWholeRows<PerPixel<W1LambertShader>>);
 
-struct ClipVertex {
-  glm::vec4 position;
-  glm::vec3 normal;
-};
-struct ClipVertexShader {
-  using Vertex = ClipVertex;
-  static constexpr int kVaryings = 3;
-  ShadedVertex<3> operator()(const Vertex& v) const {
-    return {v.position, {v.normal.x, v.normal.y, v.normal.z}};
-  }
-};
-
+using testing_support::ClipVertex;
+using testing_support::ClipVertexShader;
 using Result = testing_support::DrawnFrame;  // counts unused
 using testing_support::sameFrame;
 
@@ -60,14 +50,10 @@ template <class PS, class VS>
 Result render(int width, int height, int samples, const PipelineState& state, const VS& vs,
               std::span<const typename VS::Vertex> vertices, std::span<const uint32_t> indices,
               BackEndTarget target) {
-  Framebuffer fb(width, height, false, samples);
   ExecutionOptions exec;
   exec.backEnd = target;
-  Result r;
-  EXPECT_TRUE(draw(fb, state, DrawCall<VS, PS>{vertices, indices, vs, PS{}}, r.stats, exec));
-  r.color = fb.colorPlane();
-  r.depth = fb.depthPlane();
-  return r;
+  return testing_support::drawFrame<PS>(width, height, samples, false, state, vs, vertices,
+                                        indices, exec);
 }
 
 TEST(WholeRowShading, BunnyEqualsPerPixelShading) {

@@ -1,8 +1,10 @@
-// One draw of window-space triangles in a constant colour into a fresh, cleared framebuffer, and
-// what it left: the tests that compare how a draw ran (threads, kernels, memory) start here.
+// One draw into a fresh framebuffer, and what it left: the tests that compare how a draw ran
+// (threads, kernels, memory, shortcuts) start here. Window-space triangles in a constant colour,
+// or any vertex and pixel shader, with a clip-space vertex carrying a normal for the latter.
 #pragma once
 
 #include <cstring>
+#include <span>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -29,6 +31,35 @@ inline testing::AssertionResult sameFrame(const DrawnFrame& a, const DrawnFrame&
   if (a.counts != b.counts) return testing::AssertionFailure() << "counts differ";
   if (!(a.stats == b.stats)) return testing::AssertionFailure() << "statistics differ";
   return testing::AssertionSuccess();
+}
+
+// A clip-space vertex with a normal, which its shader passes on as three varyings: random
+// clip-space triangles for shaders that read a normal.
+struct ClipVertex {
+  glm::vec4 position;
+  glm::vec3 normal;
+};
+struct ClipVertexShader {
+  using Vertex = ClipVertex;
+  static constexpr int kVaryings = 3;
+  ShadedVertex<3> operator()(const Vertex& v) const {
+    return {v.position, {v.normal.x, v.normal.y, v.normal.z}};
+  }
+};
+
+// One draw with pixel shader PS (default-constructed) into a fresh framebuffer of `samples`
+// samples (with a count plane when `counts`), and what it left.
+template <class PS, class VS>
+DrawnFrame drawFrame(int width, int height, int samples, bool counts, const PipelineState& state,
+                     const VS& vs, std::span<const typename VS::Vertex> vertices,
+                     std::span<const uint32_t> indices, const ExecutionOptions& exec) {
+  Framebuffer fb(width, height, counts, samples);
+  DrawnFrame f;
+  EXPECT_TRUE(draw(fb, state, DrawCall<VS, PS>{vertices, indices, vs, PS{}}, f.stats, exec));
+  f.color = fb.colorPlane();
+  f.depth = fb.depthPlane();
+  f.counts = fb.countPlane();
+  return f;
 }
 
 inline DrawnFrame drawWindowTriangles(int width, int height, const std::vector<WindowVertex>& vertices,
