@@ -202,20 +202,63 @@ RAST_TILE_INLINE CoverageMask depthTestInline(CompareOp op, const TileLanes<floa
   return mask;
 }
 
-// One fragment's compare by the same switch: the test of a few covered pixels one at a time.
-RAST_TILE_INLINE bool depthPassesInline(CompareOp op, float z, float stored) {
+// The depth test of the few covered pixels of `mask`, one at a time (rasterizeTile's fewPixels):
+// the depth of each at (dx0 + column, dy0 + row) by interpolateDepth, quantised by `quantize`
+// when there is one, into `z`, then compared by depthPasses. The lanes agree with these bit for
+// bit, so the result is what depthLanes, quantizeLanes and depthTestLanes give those pixels.
+// Returns the pixels that pass; `lo` and `hi` get the range of their depths, NaN in `lo` if one
+// is NaN. Specialised on the compare op, so no pixel tests draw state.
+struct FewPixelsPassed {
+  CoverageMask passed = 0;
+  float lo = std::numeric_limits<float>::infinity(), hi = -std::numeric_limits<float>::infinity();
+};
+template <CompareOp Op, int N>
+RAST_TILE_INLINE FewPixelsPassed depthTestFewPixels(const SetupTriangle<N>& t, CoverageMask mask,
+                                                    float dx0, float dy0, float (*quantize)(float),
+                                                    const TileLanes<float>& stored,
+                                                    TileLanes<float>& z) {
+  for (CoverageMask m = mask; m; m &= m - 1) {
+    const int i = std::countr_zero(m);
+    z[i] = interpolateDepth(t, dx0 + float(i % kTileSize), dy0 + float(i / kTileSize));
+  }
+  if (quantize)
+    for (CoverageMask m = mask; m; m &= m - 1) {
+      const int i = std::countr_zero(m);
+      z[i] = quantize(z[i]);
+    }
+  FewPixelsPassed r;
+  bool nan = false;
+  for (CoverageMask m = mask; m; m &= m - 1) {
+    const int i = std::countr_zero(m);
+    if (!depthPasses<Op>(z[i], stored[i])) continue;
+    r.passed |= CoverageMask{1} << i;
+    r.lo = std::min(r.lo, z[i]);
+    r.hi = std::max(r.hi, z[i]);
+    nan |= z[i] != z[i];
+  }
+  if (nan) r.lo = std::numeric_limits<float>::quiet_NaN();
+  return r;
+}
+
+template <int N>
+RAST_TILE_INLINE FewPixelsPassed depthTestFewPixelsInline(CompareOp op, const SetupTriangle<N>& t,
+                                                          CoverageMask mask, float dx0, float dy0,
+                                                          float (*quantize)(float),
+                                                          const TileLanes<float>& stored,
+                                                          TileLanes<float>& z) {
   using enum CompareOp;
   switch (op) {
-    case Never: return depthPasses<Never>(z, stored);
-    case Less: return depthPasses<Less>(z, stored);
-    case Equal: return depthPasses<Equal>(z, stored);
-    case LessEqual: return depthPasses<LessEqual>(z, stored);
-    case Greater: return depthPasses<Greater>(z, stored);
-    case NotEqual: return depthPasses<NotEqual>(z, stored);
-    case GreaterEqual: return depthPasses<GreaterEqual>(z, stored);
-    case Always: return true;
+    case Never: return depthTestFewPixels<Never>(t, mask, dx0, dy0, quantize, stored, z);
+    case Less: return depthTestFewPixels<Less>(t, mask, dx0, dy0, quantize, stored, z);
+    case Equal: return depthTestFewPixels<Equal>(t, mask, dx0, dy0, quantize, stored, z);
+    case LessEqual: return depthTestFewPixels<LessEqual>(t, mask, dx0, dy0, quantize, stored, z);
+    case Greater: return depthTestFewPixels<Greater>(t, mask, dx0, dy0, quantize, stored, z);
+    case NotEqual: return depthTestFewPixels<NotEqual>(t, mask, dx0, dy0, quantize, stored, z);
+    case GreaterEqual:
+      return depthTestFewPixels<GreaterEqual>(t, mask, dx0, dy0, quantize, stored, z);
+    case Always: return depthTestFewPixels<Always>(t, mask, dx0, dy0, quantize, stored, z);
   }
-  return true;
+  return {};
 }
 
 // What the back end does, fixed for the whole draw.
@@ -702,27 +745,15 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
       writePending();
       const float dx0 = float(x0 - t.bounds.x0) + cfg.samples.offsetXPixels(0);
       const float dy0 = float(y0 - t.bounds.y0) + cfg.samples.offsetYPixels(0);
-      CoverageMask passed = 0;
-      float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-      bool nan = false;
-      for (CoverageMask m = mask[0]; m; m &= m - 1) {
-        const int i = std::countr_zero(m);
-        float zi = interpolateDepth(t, dx0 + float(i % kTileSize), dy0 + float(i / kTileSize));
-        if (cfg.quantize) zi = cfg.quantize(zi);
-        if (!depthPassesInline(cfg.compare, zi, tile.depth[0][i])) continue;
-        passed |= CoverageMask{1} << i;
-        z[0][i] = zi;
-        lo = std::min(lo, zi);
-        hi = std::max(hi, zi);
-        nan |= zi != zi;
-      }
-      const uint64_t passes = uint64_t(popcount64(passed));
+      const FewPixelsPassed r = depthTestFewPixelsInline(cfg.compare, t, mask[0], dx0, dy0,
+                                                         cfg.quantize, tile.depth[0], z[0]);
+      const uint64_t passes = uint64_t(popcount64(r.passed));
       stats.depthTestsPassed += passes;
       stats.depthTestsFailed += covered - passes;
-      if (!passed) continue;
-      mask[0] = anySample = passed;
-      triMin = nan ? std::numeric_limits<float>::quiet_NaN() : lo;
-      triMax = hi;
+      if (!r.passed) continue;
+      mask[0] = anySample = r.passed;
+      triMin = r.lo;
+      triMax = r.hi;
     } else if (useBounds) {
       const float ax = float(x0 - t.bounds.x0), ay = float(y0 - t.bounds.y0);
       const float bx = ax + float(cols - 1), by = ay + float(rows - 1);
