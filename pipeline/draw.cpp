@@ -30,6 +30,10 @@ Status validateDraw(const Framebuffer& fb, const PipelineState& state, size_t ve
                          ") " + std::to_string(vp.width) + "x" + std::to_string(vp.height) +
                          " exceeds the " + f.name() + " fixed-point range of +-" +
                          std::to_string(int64_t(guard)) + " pixels");
+  if (fb.width() > kMaxFramebufferSide || fb.height() > kMaxFramebufferSide)
+    return Status::error("framebuffer " + std::to_string(fb.width()) + "x" +
+                         std::to_string(fb.height()) + " exceeds " +
+                         std::to_string(kMaxFramebufferSide) + " pixels a side");
   if (double(fb.width()) > guard || double(fb.height()) > guard)
     return Status::error("framebuffer exceeds the " + f.name() + " fixed-point range");
   if (fb.samples() > 1 && f.fractionBits < 4)

@@ -74,7 +74,7 @@ TEST(CoarseBins, EveryTileGetsTheEntriesOfOneLevelBinning) {
             continue;
           SetupTriangle<0> t;
           t.edges = setup.edges;
-          t.bounds = setup.bounds;
+          t.bounds = TriangleBounds(setup.bounds);
           chunks[c].push_back(t);
         }
       const Binned one =

@@ -123,6 +123,31 @@ TEST_P(EveryPrecision, ViewportAtTheGuardBandAndOnePixelBeyond) {
   }
 }
 
+// Set-up triangles keep their bounds in 16 bits (setup.h): the widest and tallest framebuffers a
+// draw accepts are covered to their last pixel (bounds reaching 32768, which a signed 16-bit
+// bound would turn negative), and one pixel more is a clear error that draws nothing.
+TEST(FramebufferSide, LargestAcceptedAndOneBeyond) {
+  const std::vector<glm::vec4> quad = {{-1, -1, 0, 1}, {1, -1, 0, 1}, {1, 1, 0, 1}, {-1, 1, 0, 1}};
+  const std::vector<uint32_t> indices = {0, 1, 2, 0, 2, 3};
+  const FixedPointFormat fmt = FixedPointFormat::withFractionBits(4);
+  const int side = kMaxFramebufferSide;
+  for (const auto& [w, h] : {std::pair{side, 3}, std::pair{3, side}}) {
+    const Drawn d =
+        drawCounts(countingState({0, 0, w, h}, fmt, PositionSpace::Clip), w, h, quad, indices);
+    ASSERT_TRUE(d.status.isOk()) << d.status.message();
+    EXPECT_EQ(d.counts, std::vector<uint32_t>(size_t(w) * h, 1u)) << w << "x" << h;
+  }
+  for (const auto& [w, h] : {std::pair{side + 1, 3}, std::pair{3, side + 1}}) {
+    const Drawn d =
+        drawCounts(countingState({0, 0, w, h}, fmt, PositionSpace::Clip), w, h, quad, indices);
+    ASSERT_FALSE(d.status.isOk());
+    EXPECT_NE(d.status.message().find("exceeds 32768 pixels a side"), std::string::npos)
+        << d.status.message();
+    EXPECT_EQ(sum(d.counts), 0u);
+    EXPECT_TRUE(d.stats == PipelineStatistics{});
+  }
+}
+
 // A window-space quad with corners at +-c covers each pixel of the framebuffer once, whether c is
 // the largest coordinate the format represents (no clipping), the float just below it, the float
 // just above it, or far beyond (the guard band clips), up to the largest float. The diagonal runs through every

@@ -182,7 +182,7 @@ TEST(TileShortcuts, WholeTileBinEntriesAreTilesCoverTileFindsInside) {
           continue;
         SetupTriangle<0> t;
         t.edges = c.edges;
-        t.bounds = c.bounds;
+        t.bounds = TriangleBounds(c.bounds);
         chunks[0].push_back(t);
       }
       TileBins bins(screen.x1, screen.y1);
