@@ -86,7 +86,7 @@ struct DrawCapture {
     if (zoomTileX < 0 || zoomTileX >= tilesX || zoomTileY < 0 || zoomTileY >= tilesY) return;
     for (const uint32_t entry : bins.entries(zoomTileY * tilesX + zoomTileX, scratch)) {
       const auto& t = triangles[entry & ~kWholeTileBit];
-      zoomTriangles.push_back({t.edges, t.bounds, t.primitiveId});
+      zoomTriangles.push_back({t.edges, t.bounds, t.primitiveId()});
     }
   }
 };

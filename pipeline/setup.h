@@ -5,6 +5,7 @@
 #include <array>
 #include <type_traits>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 
@@ -18,16 +19,21 @@
 
 namespace rast {
 
+// Stand-ins for members a triangle does not have (no varyings, no padding): distinct empty
+// types, so that [[no_unique_address]] lets them all take no room (std::array<T, 0> takes a byte).
 struct NoPlane {};
+struct NoVaryingPlanes {};
+struct NoPadding {};
 
 // The largest framebuffer side a draw accepts (validateDraw), so that a set-up triangle's bounds,
 // which lie within the framebuffer, fit 16 bits a coordinate. Direct3D's limit is half of it.
 inline constexpr int kMaxFramebufferSide = 32768;
 
 // A set-up triangle's bounds, PixelRect's values in 16 bits each (all lie in [0,
-// kMaxFramebufferSide]). Eight bytes fewer take the triangle with three varyings from 136 bytes
-// to 128: two cache lines instead of three for every read of it in the back end and every write
-// of it in setup, lines which on this machine often cross from one core complex to the other.
+// kMaxFramebufferSide]): eight bytes fewer than PixelRect's, which took the triangle with three
+// varyings from 136 bytes to 128, two cache lines instead of three for every read of it in the
+// back end and every write of it in setup (lines which on this machine often cross from one core
+// complex to the other).
 struct TriangleBounds {
   uint16_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 
@@ -40,9 +46,18 @@ struct TriangleBounds {
 };
 static_assert(kMaxFramebufferSide <= std::numeric_limits<uint16_t>::max());
 
+// A set-up triangle with N varyings takes 72 bytes, 12 more for 1/w when N > 0, and 12 per
+// varying. Where that falls 8 bytes or less short of whole cache lines (three varyings: 120), it
+// is padded to them (128), so that the back end's fetch of a triangle from a 64-byte-aligned
+// chunk takes whole lines: at 120 bytes six triangles in eight straddle three lines.
+constexpr size_t setupTrianglePadding(int n) {
+  const size_t bytes = 72 + (n > 0 ? 12 : 0) + 12 * size_t(n);
+  return bytes % 64 >= 56 ? 64 - bytes % 64 : 0;
+}
+
 // Everything the back end needs of one triangle. N: varyings the pixel shader reads.
 // Kept small, since a draw writes one per triangle and the back end reads it once per tile it
-// touches (W2 tiny-1: two million a frame): with no varyings it is 80 bytes, with three 128. 1/w
+// touches (W2 tiny-1: two million a frame): with no varyings it is 72 bytes, with three 128. 1/w
 // is stored only when there are varyings to correct, and float mode's edges live beside the
 // triangles (SetupTriangles::floatChunks).
 template <int N>
@@ -50,12 +65,25 @@ struct SetupTriangle {
   std::array<EdgeFunction, 3> edges;
   TriangleBounds bounds;  // planes are anchored at the centre of pixel (bounds.x0, bounds.y0)
   PlaneEquation depth;
-  uint32_t primitiveId = 0;
-  bool frontFacing = true;
+  // The primitive id in bits 0 to 30 (a draw holds at most 2^28 triangles, validateDraw, and a
+  // clipped triangle's pieces keep its id) and whether it faces the viewer in bit 31: four bytes
+  // where a separate flag took eight with its padding.
+  uint32_t primitiveAndFacing = 0;
   [[no_unique_address]] std::conditional_t<(N > 0), PlaneEquation, NoPlane> invW;
-  [[no_unique_address]] std::array<PlaneEquation, N> varyingsOverW;
+  [[no_unique_address]] std::conditional_t<(N > 0), std::array<PlaneEquation, N>, NoVaryingPlanes>
+      varyingsOverW;
+  [[no_unique_address]] std::conditional_t<(setupTrianglePadding(N) > 0),
+                                           std::array<std::byte, setupTrianglePadding(N)>, NoPadding>
+      padding;
+
+  static constexpr uint32_t kFrontFacingBit = uint32_t{1} << 31;
+  uint32_t primitiveId() const { return primitiveAndFacing & ~kFrontFacingBit; }
+  bool frontFacing() const { return (primitiveAndFacing & kFrontFacingBit) != 0; }
+  void setPrimitive(uint32_t id, bool front) {
+    primitiveAndFacing = id | (front ? kFrontFacingBit : 0);
+  }
 };
-static_assert(sizeof(SetupTriangle<0>) == 80 && sizeof(SetupTriangle<3>) == 128);
+static_assert(sizeof(SetupTriangle<0>) == 72 && sizeof(SetupTriangle<3>) == 128);
 
 // Draw-time constants of setup.
 struct SetupContext {
@@ -127,8 +155,7 @@ bool setupTriangle(const std::array<const V*, 3>& v, const SetupContext& ctx,
 
   out.edges = coverage.edges;
   out.bounds = TriangleBounds(coverage.bounds);
-  out.primitiveId = primitiveId;
-  out.frontFacing = front;
+  out.setPrimitive(primitiveId, front);
 
   // Planes through the snapped positions (float mode: the float ones), so interpolation agrees
   // with the coverage it serves.
@@ -145,11 +172,13 @@ bool setupTriangle(const std::array<const V*, 3>& v, const SetupContext& ctx,
   const double inv = 1.0 / signedArea;
   const int ax = out.bounds.x0, ay = out.bounds.y0;
   out.depth = PlaneEquation::through(x, y, depth, inv, ax, ay);
-  if constexpr (N > 0) out.invW = PlaneEquation::through(x, y, invW, inv, ax, ay);
-  for (int k = 0; k < N; ++k) {
-    std::array<double, 3> overW;
-    for (int i = 0; i < 3; ++i) overW[i] = double(v[i]->varyings[k]) * w[i].invW;
-    out.varyingsOverW[k] = PlaneEquation::through(x, y, overW, inv, ax, ay);
+  if constexpr (N > 0) {
+    out.invW = PlaneEquation::through(x, y, invW, inv, ax, ay);
+    for (int k = 0; k < N; ++k) {
+      std::array<double, 3> overW;
+      for (int i = 0; i < 3; ++i) overW[i] = double(v[i]->varyings[k]) * w[i].invW;
+      out.varyingsOverW[k] = PlaneEquation::through(x, y, overW, inv, ax, ay);
+    }
   }
   ++stats.setupTriangles;
   return true;

@@ -172,8 +172,7 @@ class SetupBatch {
       for (int e = 0; e < 3; ++e)
         t.edges[e] = {coverage_.a[e][l], coverage_.b[e][l], coverage_.c[e][l]};
       t.bounds = {coverage_.x0[l], coverage_.y0[l], coverage_.x1[l], coverage_.y1[l]};
-      t.primitiveId = primitiveIds_[l];
-      t.frontFacing = front[l];
+      t.setPrimitive(primitiveIds_[l], front[l]);
       t.depth = plane(depth_, l);
       if constexpr (N > 0) {
         t.invW = plane(invW_, l);

@@ -406,8 +406,8 @@ RAST_TILE_INLINE PixelResult shadeOncePerTriangle(const SetupTriangle<N>& t, int
   fragment.y = y0 + bit / kTileSize;
   fragment.depth = interpolateDepth(t, float(fragment.x - t.bounds.x0),
                                     float(fragment.y - t.bounds.y0));
-  fragment.frontFacing = t.frontFacing;
-  fragment.primitiveId = t.primitiveId;
+  fragment.frontFacing = t.frontFacing();
+  fragment.primitiveId = t.primitiveId();
   return shader(fragment);
 }
 
@@ -454,8 +454,8 @@ RAST_TILE_INLINE CoverageMask shadePixels(const SetupTriangle<N>& t, int x0, int
     fragment.x = px;
     fragment.y = py;
     fragment.depth = interpolateDepth(t, dx, dy);
-    fragment.frontFacing = t.frontFacing;
-    fragment.primitiveId = t.primitiveId;
+    fragment.frontFacing = t.frontFacing();
+    fragment.primitiveId = t.primitiveId();
     const PixelResult result = shader(fragment);
     if constexpr (PS::kMayDiscard) {
       if (result.discard) {
@@ -509,8 +509,8 @@ RAST_TILE_INLINE CoverageMask shadePixels(const SetupTriangle<N>& t, int x0, int
         fragment.y = y0 + row;
         fragment.depth = interpolateDepth(t, float(fragment.x - t.bounds.x0),
                                           float(fragment.y - t.bounds.y0));
-        fragment.frontFacing = t.frontFacing;
-        fragment.primitiveId = t.primitiveId;
+        fragment.frontFacing = t.frontFacing();
+        fragment.primitiveId = t.primitiveId();
         const glm::vec4 c = shader(fragment).color;
         out.r[bit] = c.r;
         out.g[bit] = c.g;
