@@ -183,5 +183,17 @@ TEST(SetupBatch, EqualsSetupTriangleAvx512Build) {
   compareWithSetupTriangle<3>(detail::SetupIsa::Avx512);
 }
 
+// The primitive id and the facing flag share a word: every id a draw can give (below 2^28, and
+// the 31 bits the word keeps for it) comes back with either facing.
+TEST(SetupTriangleLayout, PrimitiveIdAndFacingShareAWord) {
+  for (const uint32_t id : {0u, 1u, (1u << 28) - 1, (1u << 31) - 1})
+    for (const bool front : {false, true}) {
+      SetupTriangle<0> t;
+      t.setPrimitive(id, front);
+      EXPECT_EQ(t.primitiveId(), id);
+      EXPECT_EQ(t.frontFacing(), front);
+    }
+}
+
 }  // namespace
 }  // namespace rast
