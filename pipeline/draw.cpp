@@ -12,8 +12,7 @@ PixelRect drawableRect(const Framebuffer& fb, const PipelineState& state) {
   return rect;
 }
 
-Status validateDraw(const Framebuffer& fb, const PipelineState& state, size_t vertexCount,
-                    std::span<const uint32_t> indices) {
+Status validateDrawState(const Framebuffer& fb, const PipelineState& state, size_t indexCount) {
   const FixedPointFormat f = state.format;
   if (!f.valid())
     return Status::error("fixed-point format " + f.name() +
@@ -42,20 +41,30 @@ Status validateDraw(const Framebuffer& fb, const PipelineState& state, size_t ve
                          "bits, the format is " + f.name());
   if (fb.samples() > 1 && state.rasterMode == RasterMode::Float)
     return Status::error("the float raster mode covers pixel centres only: it has no MSAA");
-  if (indices.size() % 3 != 0)
-    return Status::error("index count " + std::to_string(indices.size()) +
+  if (indexCount % 3 != 0)
+    return Status::error("index count " + std::to_string(indexCount) +
                          " is not a multiple of 3");
   // Set-up triangles are named by 16 bits of chunk and 15 of place (front_end.h); a bin entry's
   // 32nd bit is a flag (bin.h).
-  if (indices.size() / 3 > (size_t{1} << 28))
+  if (indexCount / 3 > (size_t{1} << 28))
     return Status::error("a draw holds at most 2^28 triangles; split the " +
-                         std::to_string(indices.size() / 3) + "-triangle draw");
+                         std::to_string(indexCount / 3) + "-triangle draw");
+  return Status::ok();
+}
+
+Status validateIndices(size_t vertexCount, std::span<const uint32_t> indices) {
   for (size_t i = 0; i < indices.size(); ++i)
     if (indices[i] >= vertexCount)
       return Status::error("index " + std::to_string(i) + " has value " +
                            std::to_string(indices[i]) + ", out of range for " +
                            std::to_string(vertexCount) + " vertices");
   return Status::ok();
+}
+
+Status validateDraw(const Framebuffer& fb, const PipelineState& state, size_t vertexCount,
+                    std::span<const uint32_t> indices) {
+  if (Status s = validateDrawState(fb, state, indices.size()); !s) return s;
+  return validateIndices(vertexCount, indices);
 }
 
 }  // namespace rast

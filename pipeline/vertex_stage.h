@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -32,10 +33,10 @@ struct TransformedVertices {
   ScratchVector<uint32_t> renumbered;
 };
 
-// Indices must already be validated against vertices.size(). Keeps the first N varyings: the
-// ones the pixel shader reads.
+// Keeps the first N varyings: the ones the pixel shader reads. Returns false, having shaded
+// nothing, when an index is out of range for `vertices` (validateIndices names the first).
 template <VertexShader VS, int N = VS::kVaryings>
-void runVertexStage(const VS& shader, std::span<const typename VS::Vertex> vertices,
+[[nodiscard]] bool runVertexStage(const VS& shader, std::span<const typename VS::Vertex> vertices,
                     std::span<const uint32_t> indices, TransformedVertices<N>& out,
                     PipelineStatistics& stats) {
   static_assert(N <= VS::kVaryings, "the pixel shader reads more varyings than the vertex shader writes");
@@ -53,10 +54,23 @@ void runVertexStage(const VS& shader, std::span<const typename VS::Vertex> verti
   using Marks = ScratchVector<uint8_t>;
   tbb::enumerable_thread_specific<Marks> marks(
       [&] { return Marks(vertices.size(), 0, ScratchAllocator<uint8_t>(out.memory)); });
+  // The marks pass is also the range check: a branch never taken in a valid draw, where a pass of
+  // its own cost a read of every index.
+  std::atomic<bool> outOfRange = false;
   forEachChunk(indices.size(), 1 << 16, [&](size_t, size_t begin, size_t end) {
     Marks& used = marks.local();
-    for (size_t i = begin; i < end; ++i) used[indices[i]] = 1;
+    // (Held in locals: byte stores may alias the vector's own pointers.)
+    uint8_t* const mark = used.data();
+    const size_t count = used.size();
+    bool bad = false;
+    for (size_t i = begin; i < end; ++i) {
+      const uint32_t v = indices[i];
+      if (v < count) mark[v] = 1;
+      else bad = true;
+    }
+    if (bad) outOfRange = true;
   });
+  if (outOfRange) return false;
   Marks* used = nullptr;  // every thread's marks, merged into the first's
   for (Marks& m : marks) {
     if (!used) {
@@ -75,7 +89,7 @@ void runVertexStage(const VS& shader, std::span<const typename VS::Vertex> verti
     });
     stats.inputIndices += indices.size();
     stats.vertexShaderInvocations += vertices.size();
-    return;
+    return true;
   }
   // Otherwise only the vertices used are shaded, numbered in order of first use: sequential and
   // cheap; shading is not.
@@ -98,6 +112,7 @@ void runVertexStage(const VS& shader, std::span<const typename VS::Vertex> verti
   });
   stats.inputIndices += indices.size();
   stats.vertexShaderInvocations += unique.size();
+  return true;
 }
 
 }  // namespace rast

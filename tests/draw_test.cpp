@@ -191,6 +191,50 @@ TEST(DrawValidation, ErrorsLeaveFramebufferAndStatisticsUntouched) {
   }
 }
 
+// The indices' range is checked in the vertex stage's parallel first pass: in a draw of several
+// chunks of indices, on any thread count, bad indices far from the start (two of them, in
+// different chunks) are found before any vertex is shaded, and the message names the first.
+TEST(DrawValidation, IndexOutOfRangeInALargeDrawOnEveryThreadCount) {
+  constexpr uint32_t kColumns = 200;
+  std::vector<glm::vec4> vertices;
+  for (uint32_t i = 0; i <= kColumns; ++i)
+    for (const float y : {-0.5f, 0.5f})
+      vertices.push_back({-0.9f + 1.8f * float(i) / kColumns, y, 0.5f, 1.0f});
+  std::vector<uint32_t> indices;
+  while (indices.size() < 300'000)
+    for (uint32_t i = 0; i < kColumns; ++i)
+      indices.insert(indices.end(), {2 * i, 2 * i + 2, 2 * i + 1, 2 * i + 1, 2 * i + 2, 2 * i + 3});
+  indices.resize(indices.size() / 3 * 3);
+  const uint32_t vertexCount = uint32_t(vertices.size());
+  indices[200'001] = vertexCount + 6;
+  indices[123'457] = vertexCount;
+  for (const int threads : {1, 2, 4}) {
+    Framebuffer fb(64, 32, true);
+    fb.clear(glm::vec4(0.2f, 0.4f, 0.6f, 0.8f), 0.3f);
+    const std::vector<PackedColor> color = fb.colorPlane();
+    const std::vector<float> depth = fb.depthPlane();
+    PipelineStatistics stats;
+    std::atomic<uint64_t> vsCalls{0}, psCalls{0};
+    const CountingVS vs{&vsCalls};
+    const CountingPS ps{&psCalls};
+    ExecutionOptions exec;
+    exec.threads = threads;
+    const Status status = draw(fb, stateWith({0, 0, 64, 32}),
+                               DrawCall<CountingVS, CountingPS>{vertices, indices, vs, ps}, stats,
+                               exec);
+    ASSERT_FALSE(status.isOk()) << threads << " threads";
+    EXPECT_EQ(status.message(), "index 123457 has value " + std::to_string(vertexCount) +
+                                    ", out of range for " + std::to_string(vertexCount) +
+                                    " vertices");
+    EXPECT_EQ(vsCalls.load(), 0u);
+    EXPECT_EQ(psCalls.load(), 0u);
+    EXPECT_EQ(fb.colorPlane(), color);
+    EXPECT_EQ(fb.depthPlane(), depth);
+    EXPECT_EQ(fb.countPlane(), std::vector<uint32_t>(64 * 32, 0u));
+    EXPECT_TRUE(stats == PipelineStatistics{});
+  }
+}
+
 // The limits themselves are valid, and the draw then renders: a quad over all of NDC covers each
 // pixel of the framebuffer (inside every one of these viewports) once.
 TEST(DrawValidation, LimitsAreAccepted) {
