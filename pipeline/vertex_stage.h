@@ -36,9 +36,10 @@ struct TransformedVertices {
 // Keeps the first N varyings: the ones the pixel shader reads. Returns false, having shaded
 // nothing, when an index is out of range for `vertices` (validateIndices names the first).
 template <VertexShader VS, int N = VS::kVaryings>
-[[nodiscard]] bool runVertexStage(const VS& shader, std::span<const typename VS::Vertex> vertices,
-                    std::span<const uint32_t> indices, TransformedVertices<N>& out,
-                    PipelineStatistics& stats) {
+[[nodiscard]] bool runVertexStage(const VS& shader,
+                                  std::span<const typename VS::Vertex> vertices,
+                                  std::span<const uint32_t> indices, TransformedVertices<N>& out,
+                                  PipelineStatistics& stats) {
   static_assert(N <= VS::kVaryings, "the pixel shader reads more varyings than the vertex shader writes");
   auto shade = [&](size_t from, ShadedVertex<N>& kept) {
     const ShadedVertex<VS::kVaryings> full = shader(vertices[from]);
