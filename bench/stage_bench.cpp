@@ -111,11 +111,15 @@ BENCHMARK(BM_ClipNearPlane)->Unit(benchmark::kMicrosecond);
 
 // Clip codes of 100,000 vertices spread around the view volume (a quarter outside it), in
 // 24.4 and 16.8 (their guard bands differ): 0 is the plane-by-plane reference (outsideMask), 1 the
-// block evaluation's baseline build and 2 its AVX2 build (pipeline/clip_codes.h).
+// block evaluation's baseline build, 2 its AVX2 build and 3 its AVX-512 build
+// (pipeline/clip_codes.h).
 void BM_ClipCodes(benchmark::State& state) {
   const int method = int(state.range(0));
-  if (method == 2 && !detail::cpuHasAvx2()) {
-    state.SkipWithError("no AVX2 on this machine");
+  const detail::ClipCodeIsa isa = method <= 1   ? detail::ClipCodeIsa::Baseline
+                                  : method == 2 ? detail::ClipCodeIsa::Avx2
+                                                : detail::ClipCodeIsa::Avx512;
+  if (isa > detail::bestClipCodeIsa()) {
+    state.SkipWithError("this build of the plane tests does not run on this machine");
     return;
   }
   std::mt19937_64 rng(11);
@@ -142,16 +146,17 @@ void BM_ClipCodes(benchmark::State& state) {
     } else {
       for (size_t i = 0; i < v.size(); i += detail::kClipCodeBlock)
         detail::clipCodesBlock(&v[i], int(std::min<size_t>(detail::kClipCodeBlock, v.size() - i)),
-                               axis, method == 2, &codes[i]);
+                               axis, isa, &codes[i]);
     }
     benchmark::DoNotOptimize(codes.data());
     benchmark::ClobberMemory();
   }
-  static const char* const kNames[] = {"reference", "blocks baseline", "blocks AVX2"};
+  static const char* const kNames[] = {"reference", "blocks baseline", "blocks AVX2",
+                                       "blocks AVX-512"};
   state.SetLabel(std::string(kNames[method]) + " " + ps.format.name());
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(v.size()));
 }
-BENCHMARK(BM_ClipCodes)->ArgsProduct({{0, 1, 2}, {4, 8}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ClipCodes)->ArgsProduct({{0, 1, 2, 3}, {4, 8}})->Unit(benchmark::kMicrosecond);
 
 void BM_SetupTriangle(benchmark::State& state) {
   const FixedPointFormat f = FixedPointFormat::withFractionBits(int(state.range(0)));

@@ -90,34 +90,36 @@ struct ClipCodeBlock {
   // doubles they come from, so that the loops need no packing.
   alignas(64) uint64_t outside[kClipCodeBlock];
   alignas(64) uint64_t unsure[kClipCodeBlock];
+  alignas(64) uint64_t finite[kClipCodeBlock];  // 1 where all four coordinates are finite
 };
 
-// Fills `outside` and `unsure` from `p` (clip_codes.cpp): one loop per plane over the block,
-// compiled for the x86-64 baseline and for AVX2 (which `avx2` picks; it must be supported). The
-// same IEEE operations in both (no FMA: -ffp-contract=off), so the same bits.
-void testAxisPlanes(const std::vector<AxisPlane>& planes, ClipCodeBlock& block, bool avx2);
-bool cpuHasAvx2();
+// The builds of testAxisPlanes, and the best one this CPU runs.
+enum class ClipCodeIsa { Baseline, Avx2, Avx512 };
+ClipCodeIsa bestClipCodeIsa();
+
+// Fills `finite`, `outside` and `unsure` from `p` (clip_codes.cpp): loops over the block, one per
+// plane, compiled for the x86-64 baseline, for AVX2 and for AVX-512 (`isa` picks; the CPU must
+// have it). The same IEEE operations in each (no FMA: -ffp-contract=off), so the same bits.
+void testAxisPlanes(const std::vector<AxisPlane>& planes, ClipCodeBlock& block, ClipCodeIsa isa);
 
 template <int N>
 void clipCodesBlock(const ShadedVertex<N>* vertices, int n, const std::vector<AxisPlane>& planes,
-                    bool avx2, VertexClipCodes* out) {
+                    ClipCodeIsa isa, VertexClipCodes* out) {
   ClipCodeBlock block;
   for (int i = 0; i < n; ++i)
     for (int c = 0; c < 4; ++c) block.p[c][i] = double(vertices[i].position[c]);
   for (int c = 0; c < 4; ++c)
     for (int i = n; i < kClipCodeBlock; ++i) block.p[c][i] = 0;
-  testAxisPlanes(planes, block, avx2);
+  testAxisPlanes(planes, block, isa);
   for (int i = 0; i < n; ++i) {
-    const glm::dvec4 v(block.p[0][i], block.p[1][i], block.p[2][i], block.p[3][i]);
-    const bool finite =
-        std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
-    if (!finite) {
+    if (!block.finite[i]) {
       out[i] = {false, 0u, 0u};
       continue;
     }
     uint32_t bits = uint32_t(block.outside[i]);
     for (uint64_t m = block.unsure[i]; m; m &= m - 1) {
       const AxisPlane& plane = planes[size_t(std::countr_zero(m))];
+      const glm::dvec4 v(block.p[0][i], block.p[1][i], block.p[2][i], block.p[3][i]);
       if (isOutside(plane.plane, v)) bits |= plane.bits;
     }
     out[i] = {true, bits & 0xFFFFu, bits >> 16};
@@ -133,12 +135,12 @@ ScratchVector<VertexClipCodes> computeClipCodes(const ScratchVector<ShadedVertex
                                        ScratchAllocator<VertexClipCodes>(vertices.get_allocator()));
   std::vector<AxisPlane> axis;
   const bool twoTerm = axisPlanes(planes, axis);
-  const bool avx2 = detail::cpuHasAvx2();
+  const detail::ClipCodeIsa isa = detail::bestClipCodeIsa();
   forEachChunk(vertices.size(), 4096, [&](size_t, size_t begin, size_t end) {
     if (twoTerm) {
       for (size_t i = begin; i < end; i += detail::kClipCodeBlock)
         detail::clipCodesBlock(&vertices[i], int(std::min<size_t>(detail::kClipCodeBlock, end - i)),
-                               axis, avx2, &codes[i]);
+                               axis, isa, &codes[i]);
       return;
     }
     for (size_t i = begin; i < end; ++i)
