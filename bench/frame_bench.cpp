@@ -59,6 +59,9 @@ void runFrames(benchmark::State& state, const Geometry& geometry, RenderFrame re
   state.counters["setup_ms"] = stages.clipSetup * msPerFrame;
   state.counters["bin_ms"] = stages.bin * msPerFrame;
   state.counters["back_end_ms"] = stages.backEnd * msPerFrame;
+  // The back end's work items: what its time is per (ns per entry = back_end_ms * 1e6 / entries).
+  state.counters["setup_triangles"] = double(frame.setupTriangles);
+  state.counters["bin_entries"] = double(frame.binEntries);
 }
 
 // W1, W3 and W4's first argument: 0 runs the back end on the best target the CPU has, 1 on the

@@ -55,7 +55,10 @@ class TileBins {
   // entries, merged (in `scratch` when both have some).
   std::span<const uint32_t> entries(int tile, std::vector<uint32_t>& scratch) const;
   // No triangle binned to `tile`, at either level.
-  bool empty(int tile) const { return tileBin(tile).empty() && coarseBin(tile).empty(); }
+  // Forced inline: the tile loop asks it of every tile, and GCC left it a call there.
+  [[gnu::always_inline]] bool empty(int tile) const {
+    return tileBin(tile).empty() && coarseBin(tile).empty();
+  }
 
   // Bins every triangle of `chunks` (a range of ranges of objects with `edges` and `bounds`),
   // naming triangle i of chunk c by id(c, i). `sampleReach`: see classifyTile. Float mode passes

@@ -22,8 +22,9 @@ inline constexpr CoverageMask kFullMask = ~CoverageMask{0};
 constexpr int coverageBit(int localX, int localY) { return localY * kTileSize + localX; }
 
 // Set bits of a mask. Written out because the baseline x86-64 target has no popcnt instruction
-// and std::popcount becomes a library call there; this is a dozen inline operations.
-constexpr int popcount64(uint64_t x) {
+// and std::popcount becomes a library call there; this is a dozen inline operations (forced
+// inline: the back end's statistics count with it per triangle and tile, and GCC made it a call).
+[[gnu::always_inline]] constexpr int popcount64(uint64_t x) {
   x = x - ((x >> 1) & 0x5555555555555555ull);
   x = (x & 0x3333333333333333ull) + ((x >> 2) & 0x3333333333333333ull);
   x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0full;
