@@ -157,10 +157,10 @@ class TileBins {
   void sortByTile(const std::vector<Part>& parts, ScratchVector<Entry> Part::*list, size_t bands,
                   size_t tiles, ScratchVector<uint32_t>& offsets,
                   ScratchVector<uint32_t>& triangles);
-  std::span<const uint32_t> tileBin(int tile) const {
+  [[gnu::always_inline]] std::span<const uint32_t> tileBin(int tile) const {
     return {triangles_.data() + offsets_[tile], triangles_.data() + offsets_[tile + 1]};
   }
-  std::span<const uint32_t> coarseBin(int tile) const {
+  [[gnu::always_inline]] std::span<const uint32_t> coarseBin(int tile) const {
     const int c = (tile / tilesX_ >> kCoarseShift) * coarseX_ + (tile % tilesX_ >> kCoarseShift);
     return {coarseTriangles_.data() + coarseOffsets_[c],
             coarseTriangles_.data() + coarseOffsets_[c + 1]};
