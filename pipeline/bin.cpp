@@ -134,16 +134,64 @@ void TileBins::addLargeTriangle(uint32_t triangle, const std::array<EdgeFunction
     }
 }
 
+void TileBins::finishChunks(PipelineStatistics& stats) {
+  // Groups of consecutive chunks, a few per thread, as build() makes them: a group's chunks share
+  // tiles, so one task counts them, in order.
+  const size_t threads = size_t(tbb::this_task_arena::max_concurrency());
+  const size_t maxGroups = std::min<size_t>(64, 4 * threads);
+  const size_t chunks = chunkParts_.size();
+  const size_t groupSize = std::max<size_t>(1, (chunks + maxGroups - 1) / maxGroups);
+  std::vector<size_t> groupFirst;
+  for (size_t c = 0; c < chunks; c += groupSize) groupFirst.push_back(c);
+  groupFirst.push_back(chunks);
+  finish(chunkParts_, groupFirst, /*disjointWithinGroup=*/false, stats);
+  chunkParts_.clear();
+}
+
+void TileBins::finish(const std::vector<Part>& parts, std::span<const size_t> groupFirst,
+                      bool disjointWithinGroup, PipelineStatistics& stats) {
+  for (const Part& p : parts) stats += p.stats;
+  sortByTile(parts, &Part::tiles, groupFirst, disjointWithinGroup, size_t(tileCount()), offsets_,
+             triangles_);
+  coarseEntryTiles_ = 0;
+  coarseTriangles_.clear();
+  std::fill(coarseOffsets_.begin(), coarseOffsets_.end(), 0u);
+  if (std::all_of(parts.begin(), parts.end(), [](const Part& p) { return p.coarse.empty(); }))
+    return;
+  sortByTile(parts, &Part::coarse, groupFirst, disjointWithinGroup,
+             size_t(coarseX_) * size_t(coarseY_), coarseOffsets_, coarseTriangles_);
+  for (int c = 0; c < coarseX_ * coarseY_; ++c) {
+    const int cx = c % coarseX_, cy = c / coarseX_;
+    const size_t tiles = size_t(std::min(kCoarseTiles, tilesX_ - cx * kCoarseTiles)) *
+                         size_t(std::min(kCoarseTiles, tilesY_ - cy * kCoarseTiles));
+    coarseEntryTiles_ += tiles * (coarseOffsets_[c + 1] - coarseOffsets_[c]);
+  }
+}
+
 void TileBins::sortByTile(const std::vector<Part>& parts, ScratchVector<Entry> Part::*list,
-                          size_t bands, size_t tiles, ScratchVector<uint32_t>& offsets,
+                          std::span<const size_t> groupFirst, bool disjointWithinGroup,
+                          size_t tiles, ScratchVector<uint32_t>& offsets,
                           ScratchVector<uint32_t>& triangles) {
-  // Per (group, tile): the count, then the next slot. Part p is band p % bands of group
-  // p / bands, and a tile lies in one band, so a group's parts never share a tile: counting per
-  // group instead of per part keeps the order and makes the serial pass bands times shorter.
-  const size_t groups = parts.size() / bands;
+  // Per (group, tile): the count, then the next slot. Counting per group instead of per part
+  // keeps the order (a group's parts are in submission order, or share no tile) and makes the
+  // serial pass shorter.
+  const size_t groups = groupFirst.size() - 1;
+  std::vector<uint32_t> groupOf(parts.size());
+  for (size_t g = 0; g < groups; ++g)
+    std::fill(groupOf.begin() + ptrdiff_t(groupFirst[g]), groupOf.begin() + ptrdiff_t(groupFirst[g + 1]),
+              uint32_t(g));
+  // Parts of one group in parallel only where they share no tile; else a group's parts in order.
+  auto eachPart = [&](auto&& f) {
+    if (disjointWithinGroup)
+      tbb::parallel_for(size_t{0}, parts.size(), f);
+    else
+      tbb::parallel_for(size_t{0}, groups, [&](size_t g) {
+        for (size_t p = groupFirst[g]; p != groupFirst[g + 1]; ++p) f(p);
+      });
+  };
   ScratchVector<uint32_t> cursor(groups * tiles, 0, ScratchAllocator<uint32_t>(memory_));
-  tbb::parallel_for(size_t{0}, parts.size(), [&](size_t p) {
-    uint32_t* group = cursor.data() + p / bands * tiles;
+  eachPart([&](size_t p) {
+    uint32_t* group = cursor.data() + groupOf[p] * tiles;
     for (const Entry& e : parts[p].*list) ++group[e.tile];
   });
   offsets[0] = 0;
@@ -161,8 +209,8 @@ void TileBins::sortByTile(const std::vector<Part>& parts, ScratchVector<Entry> P
     }
   });
   triangles.resize(offsets[tiles]);
-  tbb::parallel_for(size_t{0}, parts.size(), [&](size_t p) {
-    uint32_t* group = cursor.data() + p / bands * tiles;
+  eachPart([&](size_t p) {
+    uint32_t* group = cursor.data() + groupOf[p] * tiles;
     for (const Entry& e : parts[p].*list) triangles[group[e.tile]++] = e.triangle;
   });
 }

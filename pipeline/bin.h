@@ -98,36 +98,32 @@ class TileBins {
         groupTriangles += chunks[c].size();
       out.tiles.reserve(groupTriangles / size_t(bands) + 16);
       for (size_t c = g * groupSize; c < std::min(chunks.size(), (g + 1) * groupSize); ++c)
-        for (size_t i = 0; i < chunks[c].size(); ++i) {
-          const PixelRect& b = chunks[c][i].bounds;
-          const int tx = b.x0 >> kTileShift, ty = b.y0 >> kTileShift;
-          if (tx == (b.x1 - 1) >> kTileShift && ty == (b.y1 - 1) >> kTileShift) {
-            // A one-tile triangle is not tested: its bounds already say it touches the tile.
-            if (ty >= firstRow && ty < endRow)
-              out.tiles.push_back({uint32_t(ty * tilesX_ + tx), id(c, i)});
-            continue;
-          }
-          addTriangle(id(c, i), chunks[c][i].edges,
-                      floatChunks ? &(*floatChunks)[c][i] : nullptr, b, format, sampleReach,
-                      firstRow, endRow, out);
-        }
+        binTriangles(chunks[c], c, id, floatChunks ? &(*floatChunks)[c] : nullptr, format,
+                     sampleReach, firstRow, endRow, out);
     });
-    for (const Part& p : parts) stats += p.stats;
-    sortByTile(parts, &Part::tiles, size_t(bands), size_t(tileCount()), offsets_, triangles_);
-    coarseEntryTiles_ = 0;
-    coarseTriangles_.clear();
-    std::fill(coarseOffsets_.begin(), coarseOffsets_.end(), 0u);
-    if (std::all_of(parts.begin(), parts.end(), [](const Part& p) { return p.coarse.empty(); }))
-      return;
-    sortByTile(parts, &Part::coarse, size_t(bands), size_t(coarseX_) * size_t(coarseY_),
-               coarseOffsets_, coarseTriangles_);
-    for (int c = 0; c < coarseX_ * coarseY_; ++c) {
-      const int cx = c % coarseX_, cy = c / coarseX_;
-      const size_t tiles = size_t(std::min(kCoarseTiles, tilesX_ - cx * kCoarseTiles)) *
-                           size_t(std::min(kCoarseTiles, tilesY_ - cy * kCoarseTiles));
-      coarseEntryTiles_ += tiles * (coarseOffsets_[c + 1] - coarseOffsets_[c]);
-    }
+    // Group g is parts [g * bands, (g + 1) * bands): its bands, which share no tile.
+    std::vector<size_t> groupFirst(chunkGroups + 1);
+    for (size_t g = 0; g <= chunkGroups; ++g) groupFirst[g] = g * size_t(bands);
+    finish(parts, groupFirst, /*disjointWithinGroup=*/true, stats);
   }
+
+  // Binning chunk by chunk, for a front end that bins each chunk of triangles as soon as it has
+  // set it up, while the triangles are still in its core's cache: startChunks(count), then
+  // binChunk for every chunk (from any thread, in any order), then finishChunks. The bins are
+  // those build() makes of the same chunks: each chunk's entries in submission order, placed by
+  // the same stable sort.
+  void startChunks(size_t chunks) {
+    const ScratchVector<Entry> empty{ScratchAllocator<Entry>(memory_)};
+    chunkParts_.assign(chunks, Part{empty, empty, {}});
+  }
+  template <class Chunk, class IdOf>
+  void binChunk(size_t c, const Chunk& triangles, FixedPointFormat format, int32_t sampleReach,
+                IdOf&& id, const ScratchVector<FloatEdges>* floatEdges = nullptr) {
+    Part& out = chunkParts_[c];
+    out.tiles.reserve(triangles.size() + 16);
+    binTriangles(triangles, c, id, floatEdges, format, sampleReach, 0, tilesY_, out);
+  }
+  void finishChunks(PipelineStatistics& stats);
 
  private:
   struct Entry {
@@ -152,11 +148,33 @@ class TileBins {
   void binTileRect(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
                    const PixelRect& bounds, FixedPointFormat format, int32_t sampleReach,
                    int fx0, int fx1, int fy0, int fy1, Part& out) const;
+  // The triangles of `chunk` (chunk c) that lie in tile rows [firstRow, endRow), into `out`.
+  template <class Chunk, class IdOf>
+  void binTriangles(const Chunk& chunk, size_t c, IdOf& id, const ScratchVector<FloatEdges>* floatEdges,
+                    FixedPointFormat format, int32_t sampleReach, int firstRow, int endRow,
+                    Part& out) const {
+    for (size_t i = 0; i < chunk.size(); ++i) {
+      const PixelRect& b = chunk[i].bounds;
+      const int tx = b.x0 >> kTileShift, ty = b.y0 >> kTileShift;
+      if (tx == (b.x1 - 1) >> kTileShift && ty == (b.y1 - 1) >> kTileShift) {
+        // A one-tile triangle is not tested: its bounds already say it touches the tile.
+        if (ty >= firstRow && ty < endRow) out.tiles.push_back({uint32_t(ty * tilesX_ + tx), id(c, i)});
+        continue;
+      }
+      addTriangle(id(c, i), chunk[i].edges, floatEdges ? &(*floatEdges)[i] : nullptr, b, format,
+                  sampleReach, firstRow, endRow, out);
+    }
+  }
+  // Both sorts of the parts' entries, group g being parts [groupFirst[g], groupFirst[g + 1]) in
+  // submission order, and the parts' statistics added to `stats`.
+  void finish(const std::vector<Part>& parts, std::span<const size_t> groupFirst,
+              bool disjointWithinGroup, PipelineStatistics& stats);
   // Counting sort of the parts' `list` (tile-major, then group) into
-  // triangles[offsets[t], offsets[t + 1]).
-  void sortByTile(const std::vector<Part>& parts, ScratchVector<Entry> Part::*list, size_t bands,
-                  size_t tiles, ScratchVector<uint32_t>& offsets,
-                  ScratchVector<uint32_t>& triangles);
+  // triangles[offsets[t], offsets[t + 1]). The parts of a group are counted in order by one
+  // task, or in parallel when they share no tile (bands).
+  void sortByTile(const std::vector<Part>& parts, ScratchVector<Entry> Part::*list,
+                  std::span<const size_t> groupFirst, bool disjointWithinGroup, size_t tiles,
+                  ScratchVector<uint32_t>& offsets, ScratchVector<uint32_t>& triangles);
   [[gnu::always_inline]] std::span<const uint32_t> tileBin(int tile) const {
     return {triangles_.data() + offsets_[tile], triangles_.data() + offsets_[tile + 1]};
   }
@@ -175,6 +193,7 @@ class TileBins {
   ScratchVector<uint32_t> coarseOffsets_;  // the same for coarse tiles
   ScratchVector<uint32_t> coarseTriangles_;
   size_t coarseEntryTiles_ = 0;
+  std::vector<Part> chunkParts_;  // startChunks .. finishChunks
 };
 
 }  // namespace rast

@@ -50,6 +50,17 @@ struct NoPixelShader {
   PixelResult operator()(const Fragment<0>&) const { return {}; }
 };
 
+// Whether the front end bins each chunk of triangles in the task that set it up (TileBins::
+// binChunk), from that core's cache, instead of in a pass of its own that reads every set-up
+// triangle again. Only for draws of a few chunks per thread: a chunk is binned by one task, where
+// build() splits draws of few chunks (W3's 32 full-screen triangles) into bands of tile rows.
+// Either way the bins are the same. Called inside the draw's arena.
+template <int N>
+bool binWhileSettingUp(size_t triangles) {
+  const size_t chunks = chunkCount(triangles, SetupTriangles<N>::kInputChunk);
+  return chunks >= 2 * size_t(tbb::this_task_arena::max_concurrency());
+}
+
 // Renders the draw into `fb` and adds its counters to `stats`. On an error nothing is drawn.
 // `exec` chooses threads and coverage kernel; no choice changes a bit of the output.
 template <VertexShader VS, PixelShader PS>
@@ -87,15 +98,28 @@ Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>&
                              state.cullMode, state.frontFace, state.fillRule,
                              sampleReach,    state.rasterMode};
     SetupTriangles<N> triangles;
-    clipAndSetupAll(transformed, setup, ClipPlanes::forState(state, mapping), triangles, local);
-    clock.lap(&StageTimings::clipSetup);
-
     TileBins bins(fb.width(), fb.height(), exec.memory, exec.binLevels);
     // A lambda, not &SetupTriangles<N>::id: binning calls it per triangle, and a function
     // pointer is not inlined there.
-    bins.build(triangles.chunks, state.format, sampleReach,
-               [](size_t c, size_t i) { return SetupTriangles<PS::kVaryings>::id(c, i); }, local,
-               state.rasterMode == RasterMode::Float ? &triangles.floatChunks : nullptr);
+    const auto id = [](size_t c, size_t i) { return SetupTriangles<PS::kVaryings>::id(c, i); };
+    const bool floatMode = state.rasterMode == RasterMode::Float;
+    const ClipPlanes planes = ClipPlanes::forState(state, mapping);
+    if (binWhileSettingUp<N>(call.indices.size() / 3)) {
+      // Each chunk binned by the task that set it up, from its cache (clipSetup then includes
+      // binning; bin is the sort).
+      bins.startChunks(chunkCount(call.indices.size() / 3, SetupTriangles<N>::kInputChunk));
+      clipAndSetupAll(transformed, setup, planes, triangles, local, [&](size_t c) {
+        bins.binChunk(c, triangles.chunks[c], state.format, sampleReach, id,
+                      floatMode ? &triangles.floatChunks[c] : nullptr);
+      });
+      clock.lap(&StageTimings::clipSetup);
+      bins.finishChunks(local);
+    } else {
+      clipAndSetupAll(transformed, setup, planes, triangles, local);
+      clock.lap(&StageTimings::clipSetup);
+      bins.build(triangles.chunks, state.format, sampleReach, id, local,
+                 floatMode ? &triangles.floatChunks : nullptr);
+    }
     local.binEntries += bins.entryCount();
     if (exec.capture) exec.capture->record(bins, triangles);
     clock.lap(&StageTimings::bin);

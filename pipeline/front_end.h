@@ -121,10 +121,16 @@ struct SetupTriangles {
   }
 };
 
-// The whole front end after the vertex stage, in parallel chunks of triangles.
-template <int N>
+// The whole front end after the vertex stage, in parallel chunks of triangles. `afterChunk(c)`
+// runs in the task that set up chunk c, right after it (binning, while the triangles are in
+// that core's cache).
+struct NoChunkStep {
+  void operator()(size_t) const {}
+};
+template <int N, class AfterChunk = NoChunkStep>
 void clipAndSetupAll(const TransformedVertices<N>& in, const SetupContext& ctx,
-                     const ClipPlanes& planes, SetupTriangles<N>& out, PipelineStatistics& stats) {
+                     const ClipPlanes& planes, SetupTriangles<N>& out, PipelineStatistics& stats,
+                     AfterChunk&& afterChunk = {}) {
   const ScratchVector<VertexClipCodes> codes = computeClipCodes(in.vertices, planes);
   const detail::SetupIsa isa = detail::bestSetupIsa();
   constexpr size_t kChunk = SetupTriangles<N>::kInputChunk;
@@ -138,6 +144,7 @@ void clipAndSetupAll(const TransformedVertices<N>& in, const SetupContext& ctx,
   forEachChunk(triangleCount, kChunk, [&](size_t c, size_t begin, size_t end) {
     clipAndSetup(in, codes, uint32_t(begin), uint32_t(end), ctx, planes, out.chunks[c],
                  floatMode ? &out.floatChunks[c] : nullptr, isa, partStats[c]);
+    afterChunk(c);
   });
   for (const PipelineStatistics& s : partStats) stats += s;
 }

@@ -19,6 +19,9 @@ namespace rast {
 // Seconds spent in each stage of the draws it was given to, summed.
 struct StageTimings {
   double vertex = 0;
+  // Draws of a few chunks of triangles per thread bin each chunk in the task that set it up
+  // (binWhileSettingUp, draw.h): there clipSetup includes that binning and bin is the sort of
+  // the bins alone. Other draws (few, large triangles) bin in a pass of their own, all in bin.
   double clipSetup = 0;
   double bin = 0;
   double backEnd = 0;  // raster, depth, interpolation, pixel shader and merge, per tile
