@@ -59,7 +59,11 @@ TEST(FloatMode, CoverageEqualsTheNaiveRuleSampleBySample) {
   uint64_t covered = 0;
   for (int batch = 0; batch < 8; ++batch) {
     std::vector<WindowTriangle> triangles;
-    for (int i = 0; i < 300; ++i)
+    // The last batch is ten chunks of triangles: enough for the front end to bin each chunk while
+    // setting it up (binWhileSettingUp, draw.h) on machines of up to five threads, with the
+    // triangles' float edges; the others are binned in a pass of their own.
+    const int count = batch == 7 ? 10 * 4096 : 300;
+    for (int i = 0; i < count; ++i)
       triangles.push_back(test_support::randomTriangle(rng, FixedPointFormat::d16_8(), W, H));
     const DrawnCoverage drawn =
         drawWindowTriangles(triangles, W, H, FixedPointFormat::d16_8(), RasterMode::Float);
