@@ -135,12 +135,10 @@ void TileBins::addLargeTriangle(uint32_t triangle, const std::array<EdgeFunction
 }
 
 void TileBins::finishChunks(PipelineStatistics& stats) {
-  // Groups of consecutive chunks, a few per thread, as build() makes them: a group's chunks share
-  // tiles, so one task counts them, in order.
-  const size_t threads = size_t(tbb::this_task_arena::max_concurrency());
-  const size_t maxGroups = std::min<size_t>(64, 4 * threads);
+  // Groups of consecutive chunks, as build() makes them: a group's chunks share tiles, so one
+  // task counts them, in order.
   const size_t chunks = chunkParts_.size();
-  const size_t groupSize = std::max<size_t>(1, (chunks + maxGroups - 1) / maxGroups);
+  const size_t groupSize = chunksPerGroup(chunks);
   std::vector<size_t> groupFirst;
   for (size_t c = 0; c < chunks; c += groupSize) groupFirst.push_back(c);
   groupFirst.push_back(chunks);
@@ -178,8 +176,8 @@ void TileBins::sortByTile(const std::vector<Part>& parts, ScratchVector<Entry> P
   const size_t groups = groupFirst.size() - 1;
   std::vector<uint32_t> groupOf(parts.size());
   for (size_t g = 0; g < groups; ++g)
-    std::fill(groupOf.begin() + ptrdiff_t(groupFirst[g]), groupOf.begin() + ptrdiff_t(groupFirst[g + 1]),
-              uint32_t(g));
+    std::fill(groupOf.begin() + ptrdiff_t(groupFirst[g]),
+              groupOf.begin() + ptrdiff_t(groupFirst[g + 1]), uint32_t(g));
   // Parts of one group in parallel only where they share no tile; else a group's parts in order.
   auto eachPart = [&](auto&& f) {
     if (disjointWithinGroup)

@@ -67,12 +67,9 @@ class TileBins {
   void build(const Chunks& chunks, FixedPointFormat format, int32_t sampleReach, IdOf&& id,
              PipelineStatistics& stats,
              const std::vector<ScratchVector<FloatEdges>>* floatChunks = nullptr) {
-    // Groups of consecutive chunks, a few per thread: the counting sort keeps a count per
-    // (group, tile), so more groups than threads only cost memory. The grouping does not change
-    // the result: every bin lists its triangles in submission order.
     const size_t threads = size_t(tbb::this_task_arena::max_concurrency());
-    const size_t maxGroups = std::min<size_t>(64, 4 * threads);
-    const size_t groupSize = std::max<size_t>(1, (chunks.size() + maxGroups - 1) / maxGroups);
+    const size_t maxGroups = maxChunkGroups();
+    const size_t groupSize = chunksPerGroup(chunks.size());
     const size_t chunkGroups = chunkCount(chunks.size(), groupSize);
     // With several threads, draws of few chunks (W3: 32 full-screen triangles, one chunk) are
     // also split into bands of tile rows, so that their many tiles are binned in parallel (four
@@ -148,17 +145,27 @@ class TileBins {
   void binTileRect(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
                    const PixelRect& bounds, FixedPointFormat format, int32_t sampleReach,
                    int fx0, int fx1, int fy0, int fy1, Part& out) const;
+  // Groups of consecutive chunks, a few per thread: the counting sort keeps a count per
+  // (group, tile), so more groups than threads only cost memory. The grouping does not change
+  // the result: every bin lists its triangles in submission order. Called inside the arena.
+  static size_t maxChunkGroups() {
+    return std::min<size_t>(64, 4 * size_t(tbb::this_task_arena::max_concurrency()));
+  }
+  static size_t chunksPerGroup(size_t chunks) {
+    return std::max<size_t>(1, (chunks + maxChunkGroups() - 1) / maxChunkGroups());
+  }
   // The triangles of `chunk` (chunk c) that lie in tile rows [firstRow, endRow), into `out`.
   template <class Chunk, class IdOf>
-  void binTriangles(const Chunk& chunk, size_t c, IdOf& id, const ScratchVector<FloatEdges>* floatEdges,
-                    FixedPointFormat format, int32_t sampleReach, int firstRow, int endRow,
-                    Part& out) const {
+  void binTriangles(const Chunk& chunk, size_t c, IdOf& id,
+                    const ScratchVector<FloatEdges>* floatEdges, FixedPointFormat format,
+                    int32_t sampleReach, int firstRow, int endRow, Part& out) const {
     for (size_t i = 0; i < chunk.size(); ++i) {
       const PixelRect& b = chunk[i].bounds;
       const int tx = b.x0 >> kTileShift, ty = b.y0 >> kTileShift;
       if (tx == (b.x1 - 1) >> kTileShift && ty == (b.y1 - 1) >> kTileShift) {
         // A one-tile triangle is not tested: its bounds already say it touches the tile.
-        if (ty >= firstRow && ty < endRow) out.tiles.push_back({uint32_t(ty * tilesX_ + tx), id(c, i)});
+        if (ty >= firstRow && ty < endRow)
+          out.tiles.push_back({uint32_t(ty * tilesX_ + tx), id(c, i)});
         continue;
       }
       addTriangle(id(c, i), chunk[i].edges, floatEdges ? &(*floatEdges)[i] : nullptr, b, format,
