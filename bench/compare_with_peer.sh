@@ -2,8 +2,9 @@
 # Our pipeline against the llvmpipe peer, interleaved: each round runs, per workload, one process
 # with our benchmark and the peer's (1 and 2 threads) back to back, so slow phases of a shared
 # machine hit both alike. Prints, per workload, the median ms per frame over the rounds and the
-# ratios ours / peer. (Google Benchmark 1.7.1's --benchmark_enable_random_interleaving aborts
-# when repetitions end with different iteration counts, hence separate processes.)
+# ratios ours / peer, then W3 against the floor of one write of its colour and depth (a memset,
+# measured in the same rounds). (Google Benchmark 1.7.1's --benchmark_enable_random_interleaving
+# aborts when repetitions end with different iteration counts, hence separate processes.)
 #
 #   bench/compare_with_peer.sh [rounds=3] [rast_bench=build/bench/rast_bench]
 set -euo pipefail
@@ -34,6 +35,9 @@ for ((r = 0; r < rounds; ++r)); do
       --benchmark_out="$out/r$r-w$w.json" --benchmark_out_format=json >/dev/null 2>"$out/log"
     grep -i "skipped" "$out/log" >&2 || true
   done
+  # W3's floor in the same rounds: one write of the framebuffer's colour and depth bytes.
+  "$bench" --benchmark_filter='^BM_FrameMemsetFloor' --benchmark_out="$out/r$r-floor.json" \
+    --benchmark_out_format=json >/dev/null 2>"$out/log"
 done
 
 python3 - "$out" "${workloads[@]}" <<'PY'
@@ -58,4 +62,14 @@ for w in workloads:
         o, p = median(ours.replace("@", t)), median(peer.replace("@", t))
         row += f"{o:9.2f}{p:9.2f}{o / p:7.2f}"
     print(row)
+
+# W3 against its floor, one write of colour and depth (a memset, one thread): how many such
+# writes each frame costs, ours and the peer's, at 2 threads.
+floor = median("BM_FrameMemsetFloor")
+print(f"\nfloor: one write of colour and depth (memset, 1 thread) {floor:.3f} ms")
+for w in workloads:
+    label, ours, peer = w.split(";")
+    if label.startswith("W3") and "tess" not in label:
+        o, p = median(ours.replace("@", "2")), median(peer.replace("@", "2"))
+        print(f"{label} at 2 threads: ours {o / floor:.1f}x the floor, the peer's {p / floor:.1f}x")
 PY
