@@ -153,6 +153,11 @@ std::string statisticsTable(const FrameRecord& record) {
   line(times.header);
   rule();
   for (const auto& r : times.rows) line(r);
+  if (const uint64_t n = record.timings.drawsBinnedInSetup; n > 0)
+    out.append("(clip_setup includes binning in ")
+        .append(std::to_string(n))
+        .append(n == 1 ? " draw" : " draws")
+        .append(", whose chunks were binned by the tasks that set them up; bin is then the sort)\n");
   return out;
 }
 
@@ -177,13 +182,16 @@ nlohmann::ordered_json statisticsJson(const FrameRecord& record) {
   Json j = counters(record.total);
   j["derived"] = derived(frameDerived(record));
   j["timings_ms"] = timings(record.timings);
+  // Draws whose clip_setup time includes their binning (bin_ms is then the sort).
+  j["draws_binned_in_setup"] = record.timings.drawsBinnedInSetup;
   j["frames"] = record.frames;
   j["draws"] = Json::array();
   for (const DrawRecord& d : record.draws)
     j["draws"].push_back({{"label", d.label},
                           {"counters", counters(d.stats)},
                           {"derived", derived(deriveCounters(d.stats, d.state, d.mayDiscard))},
-                          {"timings_ms", timings(d.timings)}});
+                          {"timings_ms", timings(d.timings)},
+                          {"binned_in_setup", d.timings.drawsBinnedInSetup > 0}});
   return j;
 }
 

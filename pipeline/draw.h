@@ -113,6 +113,7 @@ Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>&
                       floatMode ? &triangles.floatChunks[c] : nullptr);
       });
       clock.lap(&StageTimings::clipSetup);
+      if (exec.timings) ++exec.timings->drawsBinnedInSetup;
       bins.finishChunks(local);
     } else {
       clipAndSetupAll(transformed, setup, planes, triangles, local);

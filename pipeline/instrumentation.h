@@ -25,6 +25,8 @@ struct StageTimings {
   double clipSetup = 0;
   double bin = 0;
   double backEnd = 0;  // raster, depth, interpolation, pixel shader and merge, per tile
+  // How many of the draws binned while setting up, so a table can say what clipSetup holds.
+  uint64_t drawsBinnedInSetup = 0;
 
   double total() const { return vertex + clipSetup + bin + backEnd; }
   StageTimings& operator+=(const StageTimings& o) {
@@ -32,6 +34,7 @@ struct StageTimings {
     clipSetup += o.clipSetup;
     bin += o.bin;
     backEnd += o.backEnd;
+    drawsBinnedInSetup += o.drawsBinnedInSetup;
     return *this;
   }
 };

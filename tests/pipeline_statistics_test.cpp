@@ -12,6 +12,7 @@
 #include "scene/scene_file.h"
 #include "shaders_cpp/constant_color.h"
 #include "shaders_cpp/window_space.h"
+#include "window_draw.h"
 
 namespace rast {
 namespace {
@@ -231,6 +232,50 @@ TEST(StatisticsTable, AlignedColumnsAndAllZeroRowsLeftOut) {
   uint64_t culled = 0;
   for (const auto& d : j["draws"]) culled += d["counters"]["setup.culled_back"].get<uint64_t>();
   EXPECT_EQ(culled, record.total.setupCulledBack);
+}
+
+// A draw of three chunks of triangles is binned while setting up at one thread and in a pass of
+// its own at two (fewer than two chunks a thread): the timings say which, and the two paths draw
+// the same frame. The statistics table and JSON say which draws' clip_setup includes binning.
+TEST(StageTimings, SayWhichDrawsBinnedWhileSettingUp) {
+  const int width = 203, height = 157;
+  std::vector<WindowVertex> vertices;
+  std::vector<uint32_t> indices;
+  // Three chunks of triangles of a few pixels over the window, overlapping at different depths.
+  for (uint32_t t = 0; t < 3 * 4096 - 1; ++t) {
+    const float x = float(t * 37 % (width - 6)), y = float(t * 53 % (height - 6));
+    const float z = float(t % 97) / 97.0f;
+    const uint32_t base = uint32_t(vertices.size());
+    vertices.push_back({glm::vec3(x, y, z)});
+    vertices.push_back({glm::vec3(x + 5.5f, y + 1.25f, z)});
+    vertices.push_back({glm::vec3(x + 2.0f, y + 4.75f, z)});
+    for (uint32_t k : {0u, 1u, 2u}) indices.push_back(base + k);
+  }
+  testing_support::DrawnFrame frames[2];
+  for (const int threads : {1, 2}) {
+    StageTimings timings;
+    ExecutionOptions exec;
+    exec.threads = threads;
+    exec.timings = &timings;
+    frames[threads - 1] = testing_support::drawWindowTriangles(
+        width, height, vertices, indices, glm::vec4(0.3f, 0.5f, 0.7f, 1.0f), exec, true);
+    EXPECT_EQ(timings.drawsBinnedInSetup, threads == 1 ? 1u : 0u) << threads << " threads";
+  }
+  EXPECT_TRUE(testing_support::sameFrame(frames[0], frames[1]));
+  EXPECT_GT(frames[0].stats.fragmentsWritten, 50000u);
+
+  const SceneDescription scene = smallDefaultScene(CullMode::Back);
+  Framebuffer fb(scene.width, scene.height);
+  FrameRecord record;
+  ExecutionOptions oneThread;
+  oneThread.threads = 1;
+  ASSERT_TRUE(renderFrame(planFrame(scene, scene.camera), fb, record, oneThread).isOk());
+  const uint64_t binnedInSetup = record.timings.drawsBinnedInSetup;
+  const std::string note = "clip_setup includes binning in ";
+  EXPECT_EQ(statisticsTable(record).find(note) != std::string::npos, binnedInSetup > 0);
+  EXPECT_EQ(statisticsJson(record)["draws_binned_in_setup"].get<uint64_t>(), binnedInSetup);
+  record.timings.drawsBinnedInSetup = 2;
+  EXPECT_NE(statisticsTable(record).find(note + "2 draws"), std::string::npos);
 }
 
 }  // namespace
