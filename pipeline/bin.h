@@ -145,9 +145,11 @@ class TileBins {
   void binTileRect(uint32_t triangle, const std::array<EdgeFunction, 3>& edges,
                    const PixelRect& bounds, FixedPointFormat format, int32_t sampleReach,
                    int fx0, int fx1, int fy0, int fy1, Part& out) const;
-  // Groups of consecutive chunks, a few per thread: the counting sort keeps a count per
-  // (group, tile), so more groups than threads only cost memory. The grouping does not change
-  // the result: every bin lists its triangles in submission order. Called inside the arena.
+  // build()'s groups of consecutive chunks, a few per thread: each is a task of the binning, so
+  // a few per thread balance the load, while the counting sort pays for each group a pass over
+  // every tile's counter (finishChunks, whose binning is done, makes one group per thread). The
+  // grouping does not change the result: every bin lists its triangles in submission order.
+  // Called inside the arena.
   static size_t maxChunkGroups() {
     return std::min<size_t>(64, 4 * size_t(tbb::this_task_arena::max_concurrency()));
   }
