@@ -99,7 +99,7 @@ Status htmlReport(const ReportInput& in, std::string& html) {
        "64 per partial tile; early or late depth as the draw's state places the test.</p>\n" +
        table(in.statistics);
   h += "<h2>Time per stage</h2>\n<p>Wall time in milliseconds; unlike the counters it varies from "
-       "run to run. A draw of a few chunks of 4096 triangles per thread or more bins each chunk in "
+       "run to run. A draw of at least two chunks of 4096 triangles per thread bins each chunk in "
        "the task that set it up: its clip_setup includes binning, and bin is the sort.</p>\n" +
        table(in.timings);
   h += "<h2>Images</h2>\n";

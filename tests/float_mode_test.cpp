@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "pipeline/front_end.h"
 #include "reference/exact_rasterizer.h"
 #include "reference/watertight_cases.h"
 #include "tests/coverage_cases.h"
@@ -62,7 +63,7 @@ TEST(FloatMode, CoverageEqualsTheNaiveRuleSampleBySample) {
     // The last batch is ten chunks of triangles: enough for the front end to bin each chunk while
     // setting it up (binWhileSettingUp, draw.h) on machines of up to five threads, with the
     // triangles' float edges; the others are binned in a pass of their own.
-    const int count = batch == 7 ? 10 * 4096 : 300;
+    const int count = batch == 7 ? 10 * int(SetupTriangles<0>::kInputChunk) : 300;
     for (int i = 0; i < count; ++i)
       triangles.push_back(test_support::randomTriangle(rng, FixedPointFormat::d16_8(), W, H));
     const DrawnCoverage drawn =

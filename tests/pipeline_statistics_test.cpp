@@ -242,7 +242,7 @@ TEST(StageTimings, SayWhichDrawsBinnedWhileSettingUp) {
   std::vector<WindowVertex> vertices;
   std::vector<uint32_t> indices;
   // Three chunks of triangles of a few pixels over the window, overlapping at different depths.
-  for (uint32_t t = 0; t < 3 * 4096 - 1; ++t) {
+  for (uint32_t t = 0; t < uint32_t(3 * SetupTriangles<0>::kInputChunk - 1); ++t) {
     const float x = float(t * 37 % (width - 6)), y = float(t * 53 % (height - 6));
     const float z = float(t % 97) / 97.0f;
     const uint32_t base = uint32_t(vertices.size());
