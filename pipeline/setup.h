@@ -41,7 +41,8 @@ struct TriangleBounds {
   TriangleBounds(int left, int top, int right, int bottom)
       : x0(uint16_t(left)), y0(uint16_t(top)), x1(uint16_t(right)), y1(uint16_t(bottom)) {}
   explicit TriangleBounds(const PixelRect& r) : TriangleBounds(r.x0, r.y0, r.x1, r.y1) {}
-  operator PixelRect() const { return {x0, y0, x1, y1}; }
+  // Forced inline: the tile loop converts per entry, and GCC left it a call there.
+  [[gnu::always_inline]] operator PixelRect() const { return {x0, y0, x1, y1}; }
   friend bool operator==(const TriangleBounds&, const TriangleBounds&) = default;
 };
 static_assert(kMaxFramebufferSide <= std::numeric_limits<uint16_t>::max());
@@ -55,13 +56,9 @@ constexpr size_t setupTrianglePadding(int n) {
   return bytes % 64 >= 56 ? 64 - bytes % 64 : 0;
 }
 
-// Everything the back end needs of one triangle. N: varyings the pixel shader reads.
-// Kept small, since a draw writes one per triangle and the back end reads it once per tile it
-// touches (W2 tiny-1: two million a frame): with no varyings it is 72 bytes, with three 128. 1/w
-// is stored only when there are varyings to correct, and float mode's edges live beside the
-// triangles (SetupTriangles::floatChunks).
-template <int N>
-struct SetupTriangle {
+// What coverage and the depth test read of a set-up triangle, the same for every number of
+// varyings: the part the back end's kernels take (rect_early_depth.h) whatever the shader.
+struct RasterTriangle {
   std::array<EdgeFunction, 3> edges;
   TriangleBounds bounds;  // planes are anchored at the centre of pixel (bounds.x0, bounds.y0)
   PlaneEquation depth;
@@ -69,12 +66,6 @@ struct SetupTriangle {
   // clipped triangle's pieces keep its id) and whether it faces the viewer in bit 31: four bytes
   // where a separate flag took eight with its padding.
   uint32_t primitiveAndFacing = 0;
-  [[no_unique_address]] std::conditional_t<(N > 0), PlaneEquation, NoPlane> invW;
-  [[no_unique_address]] std::conditional_t<(N > 0), std::array<PlaneEquation, N>, NoVaryingPlanes>
-      varyingsOverW;
-  [[no_unique_address]] std::conditional_t<(setupTrianglePadding(N) > 0),
-                                           std::array<std::byte, setupTrianglePadding(N)>, NoPadding>
-      padding;
 
   static constexpr uint32_t kFrontFacingBit = uint32_t{1} << 31;
   uint32_t primitiveId() const { return primitiveAndFacing & ~kFrontFacingBit; }
@@ -82,6 +73,21 @@ struct SetupTriangle {
   void setPrimitive(uint32_t id, bool front) {
     primitiveAndFacing = id | (front ? kFrontFacingBit : 0);
   }
+};
+
+// Everything the back end needs of one triangle. N: varyings the pixel shader reads.
+// Kept small, since a draw writes one per triangle and the back end reads it once per tile it
+// touches (W2 tiny-1: two million a frame): with no varyings it is 72 bytes, with three 128. 1/w
+// is stored only when there are varyings to correct, and float mode's edges live beside the
+// triangles (SetupTriangles::floatChunks).
+template <int N>
+struct SetupTriangle : RasterTriangle {
+  [[no_unique_address]] std::conditional_t<(N > 0), PlaneEquation, NoPlane> invW;
+  [[no_unique_address]] std::conditional_t<(N > 0), std::array<PlaneEquation, N>, NoVaryingPlanes>
+      varyingsOverW;
+  [[no_unique_address]] std::conditional_t<(setupTrianglePadding(N) > 0),
+                                           std::array<std::byte, setupTrianglePadding(N)>, NoPadding>
+      padding;
 };
 static_assert(sizeof(SetupTriangle<0>) == 72 && sizeof(SetupTriangle<3>) == 128);
 

@@ -30,6 +30,7 @@
 #include "pipeline/front_end.h"
 #include "pipeline/interpolate.h"
 #include "pipeline/merge.h"
+#include "pipeline/rect_early_depth.h"
 #include "pipeline/shader.h"
 #include "rasterizer/coverage_kernels.h"
 #include "rasterizer/rect_coverage.h"
@@ -265,6 +266,7 @@ RAST_TILE_INLINE FewPixelsPassed depthTestFewPixelsInline(CompareOp op, const Se
 struct BackEndConfig {
   FixedPointFormat format;
   CoverageKernel kernel;
+  RectEarlyDepthFn rectEarlyDepth = nullptr;  // the kernel's target's (null: the scalar reference)
   SamplePattern samples;
   CompareOp compare = CompareOp::Always;  // Always: no test
   bool depthWrite = false;
@@ -673,12 +675,19 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
   static_assert(kSmallRectPixels < kTileLanes);
   const bool coverSmallRects =
       S == 1 && cfg.rasterMode == RasterMode::FixedPoint && cfg.kernel.simd != nullptr;
-  auto cover = [&](const SetupTriangle<N>& t, uint32_t id, int s)
+  // Small rectangles are rasterized, depth tested and depth written in one pass
+  // (rect_early_depth.h) whenever nothing stands between coverage and the depth write: the test
+  // comes before shading (or there is none), the shader cannot discard, and the format stores
+  // float depths as they are (no quantising). The scalar reference kernel has no such pass.
+  const bool fuseRects = coverSmallRects && cfg.rectEarlyDepth != nullptr &&
+                         (!depthRead || earlyTest) && !PS::kMayDiscard && cfg.quantize == nullptr;
+  const RectDraw rectDraw{cfg.format, cfg.compare, cfg.depthWrite};
+  // `r`: the triangle's bounds within the tile (tileRectOf).
+  auto cover = [&](const SetupTriangle<N>& t, uint32_t id, const TileRect& r, int s)
                    RAST_TILE_LAMBDA -> TileCoverageResult {
     if (cfg.rasterMode == RasterMode::Float)
       return coverTileFloat(triangles.floatEdges(id), t.bounds, tileX, tileY);
     if (coverSmallRects) {
-      const TileRect r = tileRectOf(t.bounds, tileX, tileY);
       if (r.x0 < r.x1 && r.y0 < r.y1 && (r.x1 - r.x0) * (r.y1 - r.y0) <= kSmallRectPixels) {
         // A rectangle smaller than the tile rules out Inside (the tile within the bounds), and a
         // covered sample rules out Outside (an edge negative over the whole tile): the kind is
@@ -708,129 +717,11 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
     }
     CoverageMask anySample = 0;
     uint64_t covered = 0;
-    if (bin[b] & kWholeTileBit) {
-      // Binning's corner test, with the MSAA reach, found every sample inside: what coverTile
-      // would return for each sample.
-      ++stats.tilesTriviallyAccepted;
-      for (int s = 0; s < S; ++s) mask[s] = kFullMask;
-      anySample = kFullMask;
-      covered = uint64_t(S) * kTileLanes;
-    } else {
-      for (int s = 0; s < S; ++s) {
-        const TileCoverageResult c = cover(t, id, s);
-        if (s == 0) {
-          // Whole-tile outcomes are counted for sample 0, the only one without MSAA.
-          if (c.kind == TileCoverage::Outside) ++stats.tilesTriviallyRejected;
-          else if (c.kind == TileCoverage::Inside) ++stats.tilesTriviallyAccepted;
-          else ++stats.tilesPartial;
-        }
-        mask[s] = c.mask;
-        anySample |= c.mask;
-        covered += uint64_t(popcount64(c.mask));
-      }
-    }
-    if (!anySample) continue;
-    stats.samplesCovered += covered;
-
     float triMin = 0, triMax = 0;
-    // A triangle that covers a few pixels of the tile (small triangles, and the edges and corners
-    // of larger ones; each of W2 tiny-1's covers one) has its depth computed and tested at
-    // those pixels alone, instead of at the tile's corners against the tile's stored bounds (which
-    // cost a pass over the 64 stored lanes the first time in a tile) and then along rows of eight
-    // lanes. The same interpolateDepth, quantising and compare at each covered pixel as on the
-    // lanes (depthLanes and depthTestLanes are written to agree with them bit for bit), so the
-    // same depths, passes and counts; triMin and triMax become the range of the passing depths,
-    // which is all the stored bounds need below. As with coverSmallRects, the scalar reference
-    // kernel keeps the lane path, and the tests compare the two.
-    const bool fewPixels = testFewPixels && covered <= kFewPixels;
-    if (fewPixels) {
-      writePending();
-      const float dx0 = float(x0 - t.bounds.x0) + cfg.samples.offsetXPixels(0);
-      const float dy0 = float(y0 - t.bounds.y0) + cfg.samples.offsetYPixels(0);
-      const FewPixelsPassed r = depthTestFewPixelsInline(cfg.compare, t, mask[0], dx0, dy0,
-                                                         cfg.quantize, tile.depth[0], z[0]);
-      const uint64_t passes = uint64_t(popcount64(r.passed));
-      stats.depthTestsPassed += passes;
-      stats.depthTestsFailed += covered - passes;
-      if (!r.passed) continue;
-      mask[0] = anySample = r.passed;
-      triMin = r.lo;
-      triMax = r.hi;
-    } else if (useBounds) {
-      const float ax = float(x0 - t.bounds.x0), ay = float(y0 - t.bounds.y0);
-      const float bx = ax + float(cols - 1), by = ay + float(rows - 1);
-      const PlaneEquation& plane = t.depth;
-      if (std::fabs(plane.at0) < 0x1p100f && std::fabs(plane.ddx) < 0x1p100f &&
-          std::fabs(plane.ddy) < 0x1p100f) {
-        // The plane's float value is monotonic in dx and in dy (TileDepthBounds), and with these
-        // magnitudes (|dx|, |dy| < 2^15) no step of it overflows: its least value over the tile
-        // is at the corner its slopes point away from and its greatest at the opposite one, the
-        // min and max of the four corners in two evaluations.
-        const float left = ax + offMinX, right = bx + offMaxX, top = ay + offMinY,
-                    bottom = by + offMaxY;
-        const bool growsRight = plane.ddx >= 0, growsDown = plane.ddy >= 0;
-        triMin = interpolateDepth(t, growsRight ? left : right, growsDown ? top : bottom);
-        triMax = interpolateDepth(t, growsRight ? right : left, growsDown ? bottom : top);
-      } else {
-        const float corners[4] = {interpolateDepth(t, ax + offMinX, ay + offMinY),
-                                  interpolateDepth(t, bx + offMaxX, ay + offMinY),
-                                  interpolateDepth(t, ax + offMinX, by + offMaxY),
-                                  interpolateDepth(t, bx + offMaxX, by + offMaxY)};
-        triMin = std::min({corners[0], corners[1], corners[2], corners[3]});
-        triMax = std::max({corners[0], corners[1], corners[2], corners[3]});
-      }
-      // Quantising is monotonic, so the quantised range bounds the quantised lanes.
-      if (cfg.quantize) {
-        triMin = cfg.quantize(triMin);
-        triMax = cfg.quantize(triMax);
-      }
-      if (!stored.valid) {
-        writePending();
-        stored = tileDepthBounds(tile.depth, S);
-      }
-      if (allFail(cfg.compare, triMin, triMax, stored)) {
-        stats.depthTestsFailed += covered;
-        continue;
-      }
-    }
-
-    bool coversAll = mayDefer && !fewPixels;
-    for (int s = 0; s < S && coversAll; ++s) coversAll = mask[s] == kFullMask;
-    if (coversAll && (!depthRead || (useBounds && allPass(cfg.compare, triMin, triMax, stored)))) {
-      if (depthRead) stats.depthTestsPassed += covered;
-      if constexpr (kShadesPerTriangle<PS>) {
-        if (cfg.colorWrite) {
-          // Run once, at the tile's first pixel, as the per-triangle path below does.
-          pendingColorValue = packColor(shadeOncePerTriangle(t, x0, y0, 0, shader).color);
-          pendingColor = colorDirty = true;
-          stats.pixelShaderInvocations += kTileLanes;
-        }
-      }
-      if (cfg.depthWrite) {
-        pendingDepth = &t;
-        depthDirty = true;
-        if (stored.valid) {
-          if (triMin == triMin && triMax == triMax) stored = {triMin, triMax, false, true};
-          else stored.valid = false;
-        }
-      }
-      stats.fragmentsWritten += kTileLanes;
-      continue;
-    }
-    writePending();
-
-    // Rows the triangle covers here: small triangles touch few, and only those are evaluated.
-    // Plain ints, not a structured binding: lambdas below use them, and clang (the fuzzer
-    // build) does not let a lambda capture a binding.
-    const RowRange touched = coveredRows(anySample);
-    const int rowBegin = touched.begin, rowEnd = touched.end;
-    if (depthUsed && !fewPixels)
-      for (int s = 0; s < S; ++s) {
-        depthLanes(t, x0, y0, cfg.samples.offsetXPixels(s), cfg.samples.offsetYPixels(s),
-                   rowBegin, rowEnd, z[s]);
-        if (cfg.quantizeDepthLanes) cfg.quantizeDepthLanes(z[s], rowBegin, rowEnd);
-      }
-
+    // The rows the depth test reads. Plain ints, not a structured binding: lambdas use them,
+    // and clang (the fuzzer build) does not let a lambda capture a binding.
+    int rowBegin = 0, rowEnd = 0;
+    bool depthWritten = false;  // by the fused kernel, before shading
     auto depthTest = [&]() RAST_TILE_LAMBDA {
       uint64_t passed = 0;
       anySample = 0;
@@ -841,14 +732,174 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
       }
       return passed;
     };
-    const bool earlyLaneTest = earlyTest && !fewPixels;  // (fewPixels tested above)
-    if (earlyLaneTest && !(useBounds && allPass(cfg.compare, triMin, triMax, stored))) {
-      const uint64_t passed = depthTest();
-      stats.depthTestsPassed += passed;
-      stats.depthTestsFailed += covered - passed;
+
+    // Small rectangles: where the tile is not inside the triangle's bounds, the bounds meet it
+    // in fewer than its 64 pixels.
+    const bool smallRect = !(t.bounds.x0 <= x0 && t.bounds.y0 <= y0 &&
+                             t.bounds.x1 >= x0 + kTileSize && t.bounds.y1 >= y0 + kTileSize);
+    if (fuseRects && smallRect && !(bin[b] & kWholeTileBit)) {
+      // Coverage, depth test and depth write in one pass over the rectangle's rows
+      // (rect_early_depth.h). The depth lanes must hold the tile's values first.
+      writePending();
+      const RectEarlyDepth r = cfg.rectEarlyDepth(t, tileX, tileY, rectDraw, tile.depth[0].data());
+      // The kinds coverRect's path counts: a rectangle short of the tile is Partial, or Outside
+      // when classifyTile says so of an empty one.
+      if (!r.covered) {
+        if (classifyTile(t.edges, t.bounds, tileX, tileY, cfg.format) == TileCoverage::Outside)
+          ++stats.tilesTriviallyRejected;
+        else
+          ++stats.tilesPartial;
+        continue;
+      }
+      ++stats.tilesPartial;
+      covered = uint64_t(popcount64(r.covered));
+      stats.samplesCovered += covered;
+      if (depthRead) {
+        const uint64_t passes = uint64_t(popcount64(r.passed));
+        stats.depthTestsPassed += passes;
+        stats.depthTestsFailed += covered - passes;
+      }
+      if (!r.passed) continue;
+      mask[0] = anySample = r.passed;
+      if (cfg.depthWrite) {
+        // The stored bounds are not widened (that would cost every entry its depth range): the
+        // next entry that reads them recomputes them.
+        depthWritten = depthDirty = true;
+        stored.valid = false;
+      }
+    } else {
+      if (bin[b] & kWholeTileBit) {
+        // Binning's corner test, with the MSAA reach, found every sample inside: what coverTile
+        // would return for each sample.
+        ++stats.tilesTriviallyAccepted;
+        for (int s = 0; s < S; ++s) mask[s] = kFullMask;
+        anySample = kFullMask;
+        covered = uint64_t(S) * kTileLanes;
+      } else {
+        for (int s = 0; s < S; ++s) {
+          const TileCoverageResult c = cover(t, id, tileRectOf(t.bounds, tileX, tileY), s);
+          if (s == 0) {
+            // Whole-tile outcomes are counted for sample 0, the only one without MSAA.
+            if (c.kind == TileCoverage::Outside) ++stats.tilesTriviallyRejected;
+            else if (c.kind == TileCoverage::Inside) ++stats.tilesTriviallyAccepted;
+            else ++stats.tilesPartial;
+          }
+          mask[s] = c.mask;
+          anySample |= c.mask;
+          covered += uint64_t(popcount64(c.mask));
+        }
+      }
       if (!anySample) continue;
-    } else if (earlyLaneTest) {
-      stats.depthTestsPassed += covered;
+      stats.samplesCovered += covered;
+
+      // A triangle that covers a few pixels of the tile (small triangles, and the edges and corners
+      // of larger ones; each of W2 tiny-1's covers one) has its depth computed and tested at those
+      // pixels alone, instead of at the tile's corners against the tile's stored bounds (which cost
+      // a pass over the 64 stored lanes the first time in a tile) and then along rows of eight
+      // lanes. The same interpolateDepth, quantising and compare at each covered pixel as on the
+      // lanes (depthLanes and depthTestLanes are written to agree with them bit for bit), so the
+      // same depths, passes and counts; triMin and triMax become the range of the passing depths,
+      // which is all the stored bounds need below. As with coverSmallRects, the scalar reference
+      // kernel keeps the lane path, and the tests compare the two.
+      const bool fewPixels = testFewPixels && covered <= kFewPixels;
+      if (fewPixels) {
+        writePending();
+        const float dx0 = float(x0 - t.bounds.x0) + cfg.samples.offsetXPixels(0);
+        const float dy0 = float(y0 - t.bounds.y0) + cfg.samples.offsetYPixels(0);
+        const FewPixelsPassed r = depthTestFewPixelsInline(cfg.compare, t, mask[0], dx0, dy0,
+                                                           cfg.quantize, tile.depth[0], z[0]);
+        const uint64_t passes = uint64_t(popcount64(r.passed));
+        stats.depthTestsPassed += passes;
+        stats.depthTestsFailed += covered - passes;
+        if (!r.passed) continue;
+        mask[0] = anySample = r.passed;
+        triMin = r.lo;
+        triMax = r.hi;
+      } else if (useBounds) {
+        const float ax = float(x0 - t.bounds.x0), ay = float(y0 - t.bounds.y0);
+        const float bx = ax + float(cols - 1), by = ay + float(rows - 1);
+        const PlaneEquation& plane = t.depth;
+        if (std::fabs(plane.at0) < 0x1p100f && std::fabs(plane.ddx) < 0x1p100f &&
+            std::fabs(plane.ddy) < 0x1p100f) {
+          // The plane's float value is monotonic in dx and in dy (TileDepthBounds), and with these
+          // magnitudes (|dx|, |dy| < 2^15) no step of it overflows: its least value over the tile
+          // is at the corner its slopes point away from and its greatest at the opposite one, the
+          // min and max of the four corners in two evaluations.
+          const float left = ax + offMinX, right = bx + offMaxX, top = ay + offMinY,
+                      bottom = by + offMaxY;
+          const bool growsRight = plane.ddx >= 0, growsDown = plane.ddy >= 0;
+          triMin = interpolateDepth(t, growsRight ? left : right, growsDown ? top : bottom);
+          triMax = interpolateDepth(t, growsRight ? right : left, growsDown ? bottom : top);
+        } else {
+          const float corners[4] = {interpolateDepth(t, ax + offMinX, ay + offMinY),
+                                    interpolateDepth(t, bx + offMaxX, ay + offMinY),
+                                    interpolateDepth(t, ax + offMinX, by + offMaxY),
+                                    interpolateDepth(t, bx + offMaxX, by + offMaxY)};
+          triMin = std::min({corners[0], corners[1], corners[2], corners[3]});
+          triMax = std::max({corners[0], corners[1], corners[2], corners[3]});
+        }
+        // Quantising is monotonic, so the quantised range bounds the quantised lanes.
+        if (cfg.quantize) {
+          triMin = cfg.quantize(triMin);
+          triMax = cfg.quantize(triMax);
+        }
+        if (!stored.valid) {
+          writePending();
+          stored = tileDepthBounds(tile.depth, S);
+        }
+        if (allFail(cfg.compare, triMin, triMax, stored)) {
+          stats.depthTestsFailed += covered;
+          continue;
+        }
+      }
+
+      bool coversAll = mayDefer && !fewPixels;
+      for (int s = 0; s < S && coversAll; ++s) coversAll = mask[s] == kFullMask;
+      if (coversAll &&
+          (!depthRead || (useBounds && allPass(cfg.compare, triMin, triMax, stored)))) {
+        if (depthRead) stats.depthTestsPassed += covered;
+        if constexpr (kShadesPerTriangle<PS>) {
+          if (cfg.colorWrite) {
+            // Run once, at the tile's first pixel, as the per-triangle path below does.
+            pendingColorValue = packColor(shadeOncePerTriangle(t, x0, y0, 0, shader).color);
+            pendingColor = colorDirty = true;
+            stats.pixelShaderInvocations += kTileLanes;
+          }
+        }
+        if (cfg.depthWrite) {
+          pendingDepth = &t;
+          depthDirty = true;
+          if (stored.valid) {
+            if (triMin == triMin && triMax == triMax) stored = {triMin, triMax, false, true};
+            else stored.valid = false;
+          }
+        }
+        stats.fragmentsWritten += kTileLanes;
+        continue;
+      }
+      writePending();
+
+      // Rows the triangle covers here: small triangles touch few, and only those are evaluated.
+      const RowRange touched = coveredRows(anySample);
+      rowBegin = touched.begin;
+      rowEnd = touched.end;
+      if (depthUsed && !fewPixels)
+        for (int s = 0; s < S; ++s) {
+          depthLanes(t, x0, y0, cfg.samples.offsetXPixels(s), cfg.samples.offsetYPixels(s),
+                     rowBegin, rowEnd, z[s]);
+          if (cfg.quantizeDepthLanes) cfg.quantizeDepthLanes(z[s], rowBegin, rowEnd);
+        }
+
+      const bool earlyLaneTest = earlyTest && !fewPixels;  // (fewPixels tested above)
+      if (earlyLaneTest && !(useBounds && allPass(cfg.compare, triMin, triMax, stored))) {
+        const uint64_t passed = depthTest();
+        stats.depthTestsPassed += passed;
+        stats.depthTestsFailed += covered - passed;
+        if (!anySample) continue;
+      } else if (earlyLaneTest) {
+        stats.depthTestsPassed += covered;
+      }
+
     }
 
     if (shade) {
@@ -882,7 +933,7 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
       if (!anySample) continue;
     }
 
-    if (cfg.depthWrite) {
+    if (cfg.depthWrite && !depthWritten) {
       for (int s = 0; s < S; ++s) copyLanesWhere(mask[s], z[s], tile.depth[s]);
       depthDirty = true;
       if (stored.valid) {
@@ -1052,6 +1103,7 @@ void runBackEnd(Framebuffer& fb, const PipelineState& state, const TileBins& bin
   BackEndConfig cfg;
   cfg.format = state.format;
   cfg.kernel = exec.coverage;
+  cfg.rectEarlyDepth = rectEarlyDepthFor(exec.coverage);
   cfg.samples = SamplePattern::forCount(fb.samples());
   cfg.compare = state.depth.compare;
   cfg.depthWrite = state.depth.write;

@@ -61,16 +61,21 @@ enum class TileCoverage { Outside, Inside, Partial };
 // Inside: every edge is >= 0 at all four and the tile lies inside `bounds`. With `reach` > 0 the
 // corners move out by `reach` subpixels, so the answer holds for every sample within `reach` of
 // a pixel centre (all samples of an MSAA pattern).
-// Inline (defined below): the back end takes it for empty small rectangles, once per entry.
-inline TileCoverage classifyTile(const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
-                                 int tileX, int tileY, FixedPointFormat format, int32_t reach = 0);
+// Forced inline (defined below): the back end takes it for empty small rectangles, once per
+// entry, and GCC left it a call in the larger tile loops.
+[[gnu::always_inline]] inline TileCoverage classifyTile(const std::array<EdgeFunction, 3>& edges,
+                                                       const PixelRect& bounds, int tileX,
+                                                       int tileY, FixedPointFormat format,
+                                                       int32_t reach = 0);
 
 // The same test for the rectangle of tiles [tileX0, tileX1] x [tileY0, tileY1] (inclusive) as a
 // whole (binning's coarse tiles): Outside says every tile of it is Outside, Inside that every
-// tile is Inside.
-inline TileCoverage classifyTiles(const std::array<EdgeFunction, 3>& edges,
-                                  const PixelRect& bounds, int tileX0, int tileX1, int tileY0,
-                                  int tileY1, FixedPointFormat format, int32_t reach = 0);
+// tile is Inside. (Forced inline, as classifyTile.)
+[[gnu::always_inline]] inline TileCoverage classifyTiles(const std::array<EdgeFunction, 3>& edges,
+                                                        const PixelRect& bounds, int tileX0,
+                                                        int tileX1, int tileY0, int tileY1,
+                                                        FixedPointFormat format,
+                                                        int32_t reach = 0);
 
 // An edge's least and greatest values over the samples of a rectangle of `colsPixels` x
 // `rowsPixels` pixel centres widened by `reach`, minus its value at the rectangle's top-left
@@ -79,8 +84,9 @@ inline TileCoverage classifyTiles(const std::array<EdgeFunction, 3>& edges,
 struct EdgeExtent {
   int64_t lowest, highest;
 };
-inline EdgeExtent edgeExtent(const EdgeFunction& e, int colsPixels, int rowsPixels,
-                             FixedPointFormat format, int32_t reach) {
+[[gnu::always_inline]] inline EdgeExtent edgeExtent(const EdgeFunction& e, int colsPixels,
+                                                    int rowsPixels, FixedPointFormat format,
+                                                    int32_t reach) {
   const int64_t spanX = (int64_t(colsPixels - 1) << format.fractionBits) + 2 * int64_t(reach);
   const int64_t spanY = (int64_t(rowsPixels - 1) << format.fractionBits) + 2 * int64_t(reach);
   const int64_t dx = int64_t{e.a} * spanX, dy = int64_t{e.b} * spanY;
@@ -88,14 +94,17 @@ inline EdgeExtent edgeExtent(const EdgeFunction& e, int colsPixels, int rowsPixe
           std::max<int64_t>(dx, 0) + std::max<int64_t>(dy, 0)};
 }
 
-inline TileCoverage classifyTile(const std::array<EdgeFunction, 3>& edges, const PixelRect& bounds,
-                                 int tileX, int tileY, FixedPointFormat format, int32_t reach) {
+[[gnu::always_inline]] inline TileCoverage classifyTile(const std::array<EdgeFunction, 3>& edges,
+                                                       const PixelRect& bounds, int tileX,
+                                                       int tileY, FixedPointFormat format,
+                                                       int32_t reach) {
   return classifyTiles(edges, bounds, tileX, tileX, tileY, tileY, format, reach);
 }
 
-inline TileCoverage classifyTiles(const std::array<EdgeFunction, 3>& edges,
-                                  const PixelRect& bounds, int tileX0, int tileX1, int tileY0,
-                                  int tileY1, FixedPointFormat format, int32_t reach) {
+[[gnu::always_inline]] inline TileCoverage classifyTiles(const std::array<EdgeFunction, 3>& edges,
+                                                        const PixelRect& bounds, int tileX0,
+                                                        int tileX1, int tileY0, int tileY1,
+                                                        FixedPointFormat format, int32_t reach) {
   const int64_t sx0 = pixelCentreSubpixels(tileX0 * kTileSize, format) - reach;
   const int64_t sy0 = pixelCentreSubpixels(tileY0 * kTileSize, format) - reach;
   const int cols = (tileX1 - tileX0 + 1) * kTileSize, rows = (tileY1 - tileY0 + 1) * kTileSize;

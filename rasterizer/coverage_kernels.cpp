@@ -74,13 +74,8 @@ HWY_EXPORT(CoverTileEdges);
 
 namespace {
 
-// Highway's dispatch table holds one entry per target bit (null where not compiled) and the
-// EMU128/scalar fallback last; index it directly so a user can choose any compiled target.
 CoverageKernelFn kernelForTarget(int64_t target) {
-  const int64_t shifted = HWY_CHOSEN_TARGET_SHIFT(target);
-  const size_t index = shifted ? size_t(hwy::Num0BitsBelowLS1Bit_Nonzero64(uint64_t(shifted)))
-                               : size_t(HWY_MAX_DYNAMIC_TARGETS + 1);
-  return HWY_DISPATCH_TABLE(CoverTileEdges)[index];
+  return HWY_DISPATCH_TABLE(CoverTileEdges)[highwayTableIndex(target)];
 }
 
 std::string lower(std::string_view s) {
@@ -90,6 +85,14 @@ std::string lower(std::string_view s) {
 }
 
 }  // namespace
+
+// Highway's dispatch table holds one entry per target bit (null where not compiled) and the
+// EMU128/scalar fallback last; index it directly so a user can choose any compiled target.
+size_t highwayTableIndex(int64_t target) {
+  const int64_t shifted = HWY_CHOSEN_TARGET_SHIFT(target);
+  return shifted ? size_t(hwy::Num0BitsBelowLS1Bit_Nonzero64(uint64_t(shifted)))
+                 : size_t(HWY_MAX_DYNAMIC_TARGETS + 1);
+}
 
 std::vector<CoverageKernel> availableCoverageKernels() {
   std::vector<CoverageKernel> kernels{{"scalar", nullptr}};
@@ -102,7 +105,7 @@ std::vector<CoverageKernel> availableCoverageKernels() {
     // Highway's own one-lane fallback is also called SCALAR; ours (the int64 reference) keeps
     // the plain name.
     const std::string name = hwy::TargetName(t);
-    kernels.push_back({name == "SCALAR" ? "HWY_SCALAR" : name, fn});
+    kernels.push_back({name == "SCALAR" ? "HWY_SCALAR" : name, fn, t});
   }
   return kernels;
 }

@@ -28,7 +28,12 @@ using CoverageKernelFn = CoverageMask (*)(const TileEdgeSteps&);
 struct CoverageKernel {
   std::string name;  // "scalar" (int64 reference), "HWY_SCALAR", "SSSE3", "SSE4", "AVX2", "AVX3"
   CoverageKernelFn simd = nullptr;  // null: the scalar int64 reference (coverageScalar)
+  int64_t target = 0;  // Highway's target bit, for kernels compiled with this one (0: scalar)
 };
+
+// Where Highway target `target` (a bit of hwy::SupportedAndGeneratedTargets) sits in a dispatch
+// table (HWY_DISPATCH_TABLE), so that other kernels can be taken for the same target.
+size_t highwayTableIndex(int64_t target);
 
 // The scalar reference first, then every SIMD target compiled in and supported by this CPU, best
 // last.

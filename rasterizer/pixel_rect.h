@@ -10,7 +10,8 @@ struct PixelRect {
 
   bool empty() const { return x0 >= x1 || y0 >= y1; }
   bool contains(int x, int y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
-  PixelRect intersect(const PixelRect& o) const {
+  // Forced inline, as the whole-tile tests that use it (coverage.h's classifyTiles).
+  [[gnu::always_inline]] PixelRect intersect(const PixelRect& o) const {
     return {std::max(x0, o.x0), std::max(y0, o.y0), std::min(x1, o.x1), std::min(y1, o.y1)};
   }
   friend bool operator==(const PixelRect&, const PixelRect&) = default;
