@@ -85,8 +85,7 @@ HWY_INLINE RectEarlyDepth Rows(const RasterTriangle& t, int tileX, int tileY,
   const int x0 = int(t.bounds.x0) - ox, x1 = int(t.bounds.x1) - ox;
   const VI lane = hn::Iota(di, 0);
 
-  VI edge[3][kParts], down[3];
-  hn::Mask<RowTag> columns[kParts];
+  VI edge[3][kParts], down[3], columns[kParts];
   CoverageMask longEdgesCovered = 0;
   if constexpr (kLongEdges) {
     longEdgesCovered = coverRect(
@@ -106,42 +105,51 @@ HWY_INLINE RectEarlyDepth Rows(const RasterTriangle& t, int tileX, int tileY,
     }
     for (size_t p = 0; p < kParts; ++p) {
       const VI column = hn::Add(lane, hn::Set(di, int32_t(p * kLanes)));
-      columns[p] = hn::And(hn::Gt(column, hn::Set(di, x0 - 1)), hn::Lt(column, hn::Set(di, x1)));
+      columns[p] = hn::VecFromMask(
+          di, hn::And(hn::Gt(column, hn::Set(di, x0 - 1)), hn::Lt(column, hn::Set(di, x1))));
     }
   }
   // Per part, the depth plane's part that does not change from row to row, at0 + ddx * dx with
-  // dx = (tile's first pixel less the anchor) + column, as planeRow (tile_loop.h).
+  // dx = (tile's first pixel less the anchor) + column, as planeRow (tile_loop.h); per row, the
+  // term ddy * dy with dy = (tile's first row less the anchor) + row. Both dx and dy are small
+  // integers, exact in float however they are formed.
   constexpr bool kDepth = Op != CompareOp::Always || kWrite;
-  const float dx0 = float(ox - int(t.bounds.x0));
+  const float dx0 = float(ox - int(t.bounds.x0)), dy0 = float(oy - int(t.bounds.y0));
   VF planeAlongRow[kParts];
-  for (size_t p = 0; p < kParts; ++p)
-    planeAlongRow[p] = hn::Add(
-        hn::Set(df, t.depth.at0),
-        hn::Mul(hn::Set(df, t.depth.ddx),
-                hn::Add(hn::Set(df, dx0), hn::ConvertTo(df, hn::Add(lane, hn::Set(di, int32_t(p * kLanes)))))));
-  const VF ddy = hn::Set(df, t.depth.ddy), zero = hn::Zero(df), one = hn::Set(df, 1.0f);
-  const VI minusOne = hn::Set(di, -1);
-  // dy = (tile's first row less the anchor) + row: small integers, exact in float either way.
-  VF dy = hn::Set(df, float(oy - int(t.bounds.y0) + y0));
+  alignas(32) float rowTerm[kTileSize];
+  if constexpr (kDepth) {
+    for (size_t p = 0; p < kParts; ++p)
+      planeAlongRow[p] = hn::Add(
+          hn::Set(df, t.depth.at0),
+          hn::Mul(hn::Set(df, t.depth.ddx),
+                  hn::Add(hn::Set(df, dx0),
+                          hn::ConvertTo(df, hn::Add(lane, hn::Set(di, int32_t(p * kLanes)))))));
+    for (size_t p = 0; p < kParts; ++p)
+      hn::Store(hn::Mul(hn::Set(df, t.depth.ddy),
+                        hn::Add(hn::Set(df, dy0),
+                                hn::ConvertTo(df, hn::Add(lane, hn::Set(di, int32_t(p * kLanes)))))),
+                df, rowTerm + p * kLanes);
+  }
+  const VF zero = hn::Zero(df), one = hn::Set(df, 1.0f);
   RectEarlyDepth out;
   for (int row = y0; row < y1; ++row) {
     const int shift = row * kTileSize;
     unsigned coveredBits = 0, passedBits = 0;
-    const VF rowTerm = hn::Mul(ddy, dy);
     for (size_t p = 0; p < kParts; ++p) {
+      // Covered: in the bounds' columns and no edge negative, read from the sign of the edges' OR.
       hn::Mask<RowTag> inside;
       if constexpr (kLongEdges) {
         const uint8_t bits = uint8_t(longEdgesCovered >> (shift + int(p * kLanes)));
         inside = hn::LoadMaskBits(di, &bits);
       } else {
-        inside =
-            hn::And(columns[p], hn::Gt(hn::Or(hn::Or(edge[0][p], edge[1][p]), edge[2][p]), minusOne));
+        inside = hn::MaskFromVec(hn::AndNot(
+            hn::BroadcastSignBit(hn::Or(hn::Or(edge[0][p], edge[1][p]), edge[2][p])), columns[p]));
         for (int i = 0; i < 3; ++i) edge[i][p] = hn::Add(edge[i][p], down[i]);
       }
       coveredBits |= MaskBits(di, inside) << (p * kLanes);
       if constexpr (kDepth) {
         // The plane, then interpolateDepth's clamp: z > 1 -> 1, z < 0 -> +0, NaN and -0 kept.
-        const VF plane = hn::Add(planeAlongRow[p], rowTerm);
+        const VF plane = hn::Add(planeAlongRow[p], hn::Set(df, rowTerm[row]));
         const VF z = hn::IfThenZeroElse(hn::Lt(plane, zero),
                                         hn::IfThenElse(hn::Gt(plane, one), one, plane));
         float* s = stored + shift + p * kLanes;
@@ -153,7 +161,6 @@ HWY_INLINE RectEarlyDepth Rows(const RasterTriangle& t, int tileX, int tileY,
     }
     out.covered |= CoverageMask(coveredBits) << shift;
     out.passed |= CoverageMask(passedBits) << shift;
-    dy = hn::Add(dy, one);
   }
   if constexpr (!kDepth) out.passed = out.covered;
   return out;
