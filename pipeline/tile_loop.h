@@ -559,12 +559,14 @@ RAST_TILE_INLINE void fillLanesWhere(CoverageMask mask, T value, TileLanes<T>& t
 }
 
 // One tile: its framebuffer values in, every binned triangle in order, the values out.
-template <PixelShader PS, int N>
+// kSamples: the draw's samples per pixel when the loop is built for one count (1: no MSAA, so
+// that every per-sample loop and array below folds away), 0 when it takes any.
+template <PixelShader PS, int N, int kSamples>
 RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32_t> bin,
                    const SetupTriangles<N>& triangles, const PS& shader,
                    const BackEndConfig& cfg, TileBuffer& tile, PipelineStatistics& stats) {
   if (bin.empty()) return;  // (with the load op rasterizeTileRange fills untouched tiles)
-  const int S = cfg.samples.count;
+  const int S = kSamples ? kSamples : cfg.samples.count;
   const int x0 = tileX * kTileSize, y0 = tileY * kTileSize;
   const int cols = std::min(kTileSize, cfg.width - x0), rows = std::min(kTileSize, cfg.height - y0);
   const size_t planeSize = size_t(cfg.width) * size_t(cfg.height);
@@ -1065,9 +1067,12 @@ RAST_TILE_INLINE void rasterizeTileRange(int begin, int end, const TileBins& bin
     const int next = tile + 1;
     if (next < bins.tileCount() && !bins.empty(next))
       prefetchTileRows(cfg, next % bins.tilesX(), next / bins.tilesX());
-    rasterizeTile<PS, N>(tile % bins.tilesX(), tile / bins.tilesX(),
-                         bins.entries(tile, buffer.mergedEntries), triangles, shader, cfg, buffer,
-                         stats);
+    const int tileX = tile % bins.tilesX(), tileY = tile / bins.tilesX();
+    const std::span<const uint32_t> bin = bins.entries(tile, buffer.mergedEntries);
+    if (cfg.samples.count == 1)
+      rasterizeTile<PS, N, 1>(tileX, tileY, bin, triangles, shader, cfg, buffer, stats);
+    else
+      rasterizeTile<PS, N, 0>(tileX, tileY, bin, triangles, shader, cfg, buffer, stats);
   }
   // Non-temporal stores are weakly ordered: drained before the task ends and another thread may
   // read the framebuffer.

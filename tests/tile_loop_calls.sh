@@ -10,7 +10,7 @@
 # sampling, pipeline/sampler.cpp).
 #   tests/tile_loop_calls.sh BINARY...
 set -euo pipefail
-allowed='TileBins::entries|rast::rectMask|rast::coverTile\(|rast::coverTileFloat|rast::unpackColor|detail::blendFactor|memcpy@plt|memset@plt|powf@plt|TextureSampler::|lodFromGradients'
+allowed='TileBins::entries|rast::rectMask|rast::coverTile\(|rast::coverTileFloat|rast::unpackColor|detail::blendFactor|rast::blendAndPack|memcpy@plt|memset@plt|powf@plt|TextureSampler::|lodFromGradients'
 for binary in "$@"; do
   calls=$(objdump -d --no-show-raw-insn -C "$binary" | awk '
     /^[0-9a-f]+ <.*>:$/ { inLoop = ($0 ~ /rast::rasterizeTiles(Avx2)?</); next }
