@@ -11,7 +11,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -19,7 +18,6 @@
 #include <tbb/task_arena.h>
 
 #include "pipeline/execution.h"
-#include "pipeline/small_tile_tests.h"
 #include "pipeline/state.h"
 #include "pipeline/statistics.h"
 #include "rasterizer/coverage.h"
@@ -65,12 +63,10 @@ class TileBins {
   // Bins every triangle of `chunks` (a range of ranges of objects with `edges` and `bounds`),
   // naming triangle i of chunk c by id(c, i). `sampleReach`: see classifyTile. Float mode passes
   // the triangles' float edges, chunk for chunk, in `floatChunks`.
-  // `testChunks`, when given, holds each triangle's SmallTileTests (fixed-point mode).
   template <class Chunks, class IdOf>
   void build(const Chunks& chunks, FixedPointFormat format, int32_t sampleReach, IdOf&& id,
              PipelineStatistics& stats,
-             const std::vector<ScratchVector<FloatEdges>>* floatChunks = nullptr,
-             const std::vector<ScratchVector<SmallTileTests>>* testChunks = nullptr) {
+             const std::vector<ScratchVector<FloatEdges>>* floatChunks = nullptr) {
     const size_t threads = size_t(tbb::this_task_arena::max_concurrency());
     const size_t maxGroups = maxChunkGroups();
     const size_t groupSize = chunksPerGroup(chunks.size());
@@ -99,9 +95,8 @@ class TileBins {
         groupTriangles += chunks[c].size();
       out.tiles.reserve(groupTriangles / size_t(bands) + 16);
       for (size_t c = g * groupSize; c < std::min(chunks.size(), (g + 1) * groupSize); ++c)
-        binTriangles(chunks[c], c, id, floatChunks ? &(*floatChunks)[c] : nullptr,
-                     testChunks ? (*testChunks)[c].data() : nullptr, format, sampleReach, firstRow,
-                     endRow, out);
+        binTriangles(chunks[c], c, id, floatChunks ? &(*floatChunks)[c] : nullptr, format,
+                     sampleReach, firstRow, endRow, out);
     });
     // Group g is parts [g * bands, (g + 1) * bands): its bands, which share no tile.
     std::vector<size_t> groupFirst(chunkGroups + 1);
@@ -120,11 +115,10 @@ class TileBins {
   }
   template <class Chunk, class IdOf>
   void binChunk(size_t c, const Chunk& triangles, FixedPointFormat format, int32_t sampleReach,
-                IdOf&& id, const ScratchVector<FloatEdges>* floatEdges = nullptr,
-                const SmallTileTests* tests = nullptr) {
+                IdOf&& id, const ScratchVector<FloatEdges>* floatEdges = nullptr) {
     Part& out = chunkParts_[c];
     out.tiles.reserve(triangles.size() + 16);
-    binTriangles(triangles, c, id, floatEdges, tests, format, sampleReach, 0, tilesY_, out);
+    binTriangles(triangles, c, id, floatEdges, format, sampleReach, 0, tilesY_, out);
   }
   void finishChunks(PipelineStatistics& stats);
 
@@ -163,36 +157,17 @@ class TileBins {
     return std::max<size_t>(1, (chunks + maxChunkGroups() - 1) / maxChunkGroups());
   }
   // The triangles of `chunk` (chunk c) that lie in tile rows [firstRow, endRow), into `out`.
-  // `tests`: the chunk's SmallTileTests, or null (float mode, or callers that have none).
   template <class Chunk, class IdOf>
   void binTriangles(const Chunk& chunk, size_t c, IdOf& id,
-                    const ScratchVector<FloatEdges>* floatEdges, const SmallTileTests* tests,
-                    FixedPointFormat format, int32_t sampleReach, int firstRow, int endRow,
-                    Part& out) const {
+                    const ScratchVector<FloatEdges>* floatEdges, FixedPointFormat format,
+                    int32_t sampleReach, int firstRow, int endRow, Part& out) const {
     for (size_t i = 0; i < chunk.size(); ++i) {
       const PixelRect& b = chunk[i].bounds;
       const int tx = b.x0 >> kTileShift, ty = b.y0 >> kTileShift;
-      const int tx1 = (b.x1 - 1) >> kTileShift, ty1 = (b.y1 - 1) >> kTileShift;
-      if (tx == tx1 && ty == ty1) {
+      if (tx == (b.x1 - 1) >> kTileShift && ty == (b.y1 - 1) >> kTileShift) {
         // A one-tile triangle is not tested: its bounds already say it touches the tile.
         if (ty >= firstRow && ty < endRow)
           out.tiles.push_back({uint32_t(ty * tilesX_ + tx), id(c, i)});
-        continue;
-      }
-      if (tests && !floatEdges && tx1 - tx <= 1 && ty1 - ty <= 1) {
-        // Within 2x2 tiles: setup made the corner tests (smallTileTests). The bounds' tiles in
-        // the rows [firstRow, endRow), as bits k = column + 2 * row:
-        const unsigned columns = tx1 > tx ? 3u : 1u;
-        const unsigned range = (ty >= firstRow && ty < endRow ? columns : 0u) |
-                               (ty1 > ty && ty1 >= firstRow && ty1 < endRow ? columns << 2 : 0u);
-        const unsigned bits = tests[i];
-        // Set bits of a nibble, four bits a count: 0x4332322132212110 holds popcount(v) at 4v.
-        out.stats.tilesTriviallyRejected += (0x4332322132212110ull >> (4 * (range & ~bits))) & 15;
-        for (unsigned m = range & bits; m; m &= m - 1) {
-          const int k = std::countr_zero(m);
-          out.tiles.push_back({uint32_t((ty + (k >> 1)) * tilesX_ + tx + (k & 1)),
-                               bits >> (4 + k) & 1 ? id(c, i) | kWholeTileBit : id(c, i)});
-        }
         continue;
       }
       addTriangle(id(c, i), chunk[i].edges, floatEdges ? &(*floatEdges)[i] : nullptr, b, format,

@@ -110,8 +110,7 @@ Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>&
       bins.startChunks(chunkCount(call.indices.size() / 3, SetupTriangles<N>::kInputChunk));
       clipAndSetupAll(transformed, setup, planes, triangles, local, [&](size_t c) {
         bins.binChunk(c, triangles.chunks[c], state.format, sampleReach, id,
-                      floatMode ? &triangles.floatChunks[c] : nullptr,
-                      floatMode ? nullptr : triangles.testChunks[c].data());
+                      floatMode ? &triangles.floatChunks[c] : nullptr);
       });
       clock.lap(&StageTimings::clipSetup);
       if (exec.timings) ++exec.timings->drawsBinnedInSetup;
@@ -120,8 +119,7 @@ Status draw(Framebuffer& fb, const PipelineState& state, const DrawCall<VS, PS>&
       clipAndSetupAll(transformed, setup, planes, triangles, local);
       clock.lap(&StageTimings::clipSetup);
       bins.build(triangles.chunks, state.format, sampleReach, id, local,
-                 floatMode ? &triangles.floatChunks : nullptr,
-                 floatMode ? nullptr : &triangles.testChunks);
+                 floatMode ? &triangles.floatChunks : nullptr);
     }
     local.binEntries += bins.entryCount();
     if (exec.capture) exec.capture->record(bins, triangles);

@@ -16,19 +16,16 @@
 
 namespace rast {
 
-// Clips and sets up triangles [begin, end) of the draw, appending to `out` in order, and in
-// fixed-point mode each one's SmallTileTests to `testsOut` (float mode: its float edges to
-// `floatOut`; the other is null).
+// Clips and sets up triangles [begin, end) of the draw, appending to `out` in order.
 template <int N>
 void clipAndSetup(const TransformedVertices<N>& in, const ScratchVector<VertexClipCodes>& codes,
                   uint32_t begin, uint32_t end, const SetupContext& ctx,
                   const ClipPlanes& planes, ScratchVector<SetupTriangle<N>>& out,
-                  ScratchVector<FloatEdges>* floatOut, ScratchVector<SmallTileTests>* testsOut,
-                  detail::SetupIsa isa, PipelineStatistics& stats) {
+                  ScratchVector<FloatEdges>* floatOut, detail::SetupIsa isa,
+                  PipelineStatistics& stats) {
   stats.inputTriangles += end - begin;
   out.reserve(out.size() + (end - begin));
   if (floatOut) floatOut->reserve(floatOut->size() + (end - begin));
-  if (testsOut) testsOut->reserve(testsOut->size() + (end - begin));
   ClipPolygon<N> polygon;
   FloatEdges floatEdges;
   // Unclipped triangles in fixed-point mode are set up several at a time (setup_batch.h); float
@@ -40,9 +37,6 @@ void clipAndSetup(const TransformedVertices<N>& in, const ScratchVector<VertexCl
     SetupTriangle<N>& triangle = out.emplace_back();
     if (setupTriangle<N>(vertices, ctx, primitiveId, triangle, floatEdges, stats)) {
       if (floatOut) floatOut->push_back(floatEdges);
-      if (testsOut)
-        testsOut->push_back(smallTileTests(triangle.edges, triangle.bounds, ctx.format,
-                                           ctx.sampleReach));
     } else {
       out.pop_back();
     }
@@ -76,13 +70,13 @@ void clipAndSetup(const TransformedVertices<N>& in, const ScratchVector<VertexCl
         setUp(tri, t);
       } else {
         batch.add(tri, t);
-        if (batch.full()) batch.flush(out, stats, testsOut);
+        if (batch.full()) batch.flush(out, stats);
       }
       continue;
     }
     ++stats.clipClipped;
     // Triangles leave setup in order: the batched ones before this one.
-    batch.flush(out, stats, testsOut);
+    batch.flush(out, stats);
     clipTriangle(tri, planes, crossed, polygon, &stats);
     // The clipped polygon is convex and keeps the winding: a fan from its first vertex.
     for (int k = 1; k + 1 < polygon.count; ++k) {
@@ -92,7 +86,7 @@ void clipAndSetup(const TransformedVertices<N>& in, const ScratchVector<VertexCl
       setUp(part, t);
     }
   }
-  batch.flush(out, stats, testsOut);
+  batch.flush(out, stats);
 }
 
 // The set-up triangles of a draw, in the chunks that made them (one chunk per 4096 input
@@ -112,8 +106,6 @@ struct SetupTriangles {
   std::vector<ScratchVector<SetupTriangle<N>>> chunks;
   // RasterMode::Float only (empty otherwise): each triangle's float edges, in the same places.
   std::vector<ScratchVector<FloatEdges>> floatChunks;
-  // RasterMode::FixedPoint only (empty otherwise): each triangle's SmallTileTests (bin.h).
-  std::vector<ScratchVector<SmallTileTests>> testChunks;
 
   static uint32_t id(size_t chunk, size_t local) { return uint32_t(chunk << kLocalBits | local); }
   const SetupTriangle<N>& operator[](uint32_t id) const {
@@ -148,12 +140,10 @@ void clipAndSetupAll(const TransformedVertices<N>& in, const SetupContext& ctx,
   out.chunks.resize(chunks, ScratchVector<SetupTriangle<N>>(memory));
   const bool floatMode = ctx.rasterMode == RasterMode::Float;
   out.floatChunks.resize(floatMode ? chunks : 0, ScratchVector<FloatEdges>(memory));
-  out.testChunks.resize(floatMode ? 0 : chunks, ScratchVector<SmallTileTests>(memory));
   std::vector<PipelineStatistics> partStats(chunks);
   forEachChunk(triangleCount, kChunk, [&](size_t c, size_t begin, size_t end) {
     clipAndSetup(in, codes, uint32_t(begin), uint32_t(end), ctx, planes, out.chunks[c],
-                 floatMode ? &out.floatChunks[c] : nullptr,
-                 floatMode ? nullptr : &out.testChunks[c], isa, partStats[c]);
+                 floatMode ? &out.floatChunks[c] : nullptr, isa, partStats[c]);
     afterChunk(c);
   });
   for (const PipelineStatistics& s : partStats) stats += s;

@@ -94,19 +94,6 @@ namespace {
   }
 }
 
-// smallTileTests lane by lane (its arithmetic is branch-free, so the loop vectorises).
-[[gnu::always_inline]] inline void smallTileTestsBody(const SetupCoverageConstants& k,
-                                                      const SetupCoverageLanes& c, int lanes,
-                                                      SmallTileTests* out) {
-  for (int l = 0; l < lanes; ++l) {
-    const int32_t a[3] = {c.a[0][l], c.a[1][l], c.a[2][l]};
-    const int32_t b[3] = {c.b[0][l], c.b[1][l], c.b[2][l]};
-    const int64_t e[3] = {c.c[0][l], c.c[1][l], c.c[2][l]};
-    out[l] = smallTileTests(a, b, e, c.x0[l], c.y0[l], c.x1[l], c.y1[l], k.fractionBits,
-                            k.sampleReach);
-  }
-}
-
 [[gnu::always_inline]] inline void planeGeometryBody(const SetupCorners& c, double pixelsPerSubpixel,
                                                      int lanes, SetupPlaneInputs& out) {
   for (int i = 0; i < 3; ++i)
@@ -194,21 +181,6 @@ void coverageLanesBaseline(const SetupCoverageConstants& k, const SetupCorners& 
   coverageLanesBody(k, c, lanes, out);
 }
 
-void smallTileTestsBaseline(const SetupCoverageConstants& k, const SetupCoverageLanes& c,
-                            int lanes, SmallTileTests* out) {
-  smallTileTestsBody(k, c, lanes, out);
-}
-[[gnu::target("avx2")]] void smallTileTestsAvx2(const SetupCoverageConstants& k,
-                                               const SetupCoverageLanes& c, int lanes,
-                                               SmallTileTests* out) {
-  smallTileTestsBody(k, c, lanes, out);
-}
-[[gnu::target(RAST_SETUP_AVX512)]] void smallTileTestsAvx512(const SetupCoverageConstants& k,
-                                                             const SetupCoverageLanes& c,
-                                                             int lanes, SmallTileTests* out) {
-  smallTileTestsBody(k, c, lanes, out);
-}
-
 }  // namespace
 
 SetupIsa bestSetupIsa() {
@@ -260,15 +232,6 @@ void coverageLanes(const SetupCoverageConstants& k, const SetupCorners& c, int l
     case SetupIsa::Avx512: return coverageLanesAvx512(k, c, lanes, out);
     case SetupIsa::Avx2: return coverageLanesAvx2(k, c, lanes, out);
     case SetupIsa::Baseline: return coverageLanesBaseline(k, c, lanes, out);
-  }
-}
-
-void smallTileTestLanes(const SetupCoverageConstants& k, const SetupCoverageLanes& c, int lanes,
-                        SmallTileTests* out, SetupIsa isa) {
-  switch (isa) {
-    case SetupIsa::Avx512: return smallTileTestsAvx512(k, c, lanes, out);
-    case SetupIsa::Avx2: return smallTileTestsAvx2(k, c, lanes, out);
-    case SetupIsa::Baseline: return smallTileTestsBaseline(k, c, lanes, out);
   }
 }
 

@@ -19,7 +19,6 @@
 
 #include "pipeline/execution.h"
 #include "pipeline/setup.h"
-#include "pipeline/small_tile_tests.h"
 
 namespace rast {
 namespace detail {
@@ -73,10 +72,6 @@ struct SetupCoverageConstants {
 void coverageLanes(const SetupCoverageConstants& k, const SetupCorners& c, int lanes,
                    SetupCoverageLanes& out, SetupIsa isa);
 
-// Binning's corner tests of each lane (pipeline/small_tile_tests.h), from its coverage setup.
-void smallTileTestLanes(const SetupCoverageConstants& k, const SetupCoverageLanes& c, int lanes,
-                        SmallTileTests* out, SetupIsa isa);
-
 // The planes through each lane's snapped corners, for one attribute: `value[corner][lane]`.
 struct SetupPlaneInputs {
   alignas(64) double x[3][kSetupLanes];  // corners in pixels
@@ -129,10 +124,8 @@ class SetupBatch {
   }
 
   // Sets up the batch's triangles, appends those drawn to `out` in the order they were added,
-  // and their SmallTileTests to `tests` when given, counts them as setupTriangle does, and
-  // empties the batch.
-  void flush(ScratchVector<SetupTriangle<N>>& out, PipelineStatistics& stats,
-             ScratchVector<SmallTileTests>* tests = nullptr) {
+  // counts them as setupTriangle does, and empties the batch.
+  void flush(ScratchVector<SetupTriangle<N>>& out, PipelineStatistics& stats) {
     const int n = count_;
     if (n == 0) return;
     count_ = 0;
@@ -147,7 +140,6 @@ class SetupBatch {
     detail::windowAndSnap(constants_, n, corners_, isa_);
 
     detail::coverageLanes(coverageConstants_, corners_, n, coverage_, isa_);
-    if (tests) detail::smallTileTestLanes(coverageConstants_, coverage_, n, tileTests_, isa_);
 
     std::array<bool, kCapacity> drawn, front;
     for (int l = 0; l < n; ++l) {
@@ -180,7 +172,6 @@ class SetupBatch {
       for (int e = 0; e < 3; ++e)
         t.edges[e] = {coverage_.a[e][l], coverage_.b[e][l], coverage_.c[e][l]};
       t.bounds = {coverage_.x0[l], coverage_.y0[l], coverage_.x1[l], coverage_.y1[l]};
-      if (tests) tests->push_back(tileTests_[l]);
       t.setPrimitive(primitiveIds_[l], front[l]);
       t.depth = plane(depth_, l);
       if constexpr (N > 0) {
@@ -201,7 +192,6 @@ class SetupBatch {
   detail::SetupCornersConstants constants_;
   detail::SetupCoverageConstants coverageConstants_;
   detail::SetupCoverageLanes coverage_;
-  alignas(64) SmallTileTests tileTests_[detail::kSetupLanes];
   int count_ = 0;
   detail::SetupCorners corners_;
   detail::SetupPlaneInputs planeInputs_;

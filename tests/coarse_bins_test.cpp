@@ -24,28 +24,21 @@ struct Binned {
 };
 
 // Bins `chunks` by build(), or, with `byChunk`, as the front end does: chunk by chunk in
-// parallel (startChunks, binChunk, finishChunks), here in reverse order. `withTests`: given
-// setup's SmallTileTests of each triangle, as the front end gives them.
+// parallel (startChunks, binChunk, finishChunks), here in reverse order.
 Binned binWith(BinLevels levels, int threads, int width, int height,
                const std::vector<std::vector<SetupTriangle<0>>>& chunks, FixedPointFormat format,
-               int32_t reach, bool byChunk = false, bool withTests = false) {
+               int32_t reach, bool byChunk = false) {
   Binned b;
   TileBins bins(width, height, nullptr, levels);
-  std::vector<ScratchVector<SmallTileTests>> tests(chunks.size());
-  for (size_t c = 0; c < chunks.size(); ++c)
-    for (const SetupTriangle<0>& t : chunks[c])
-      tests[c].push_back(smallTileTests(t.edges, t.bounds, format, reach));
   tbb::task_arena(threads).execute([&] {
     if (!byChunk) {
-      bins.build(chunks, format, reach, &SetupTriangles<0>::id, b.stats, nullptr,
-                 withTests ? &tests : nullptr);
+      bins.build(chunks, format, reach, &SetupTriangles<0>::id, b.stats);
       return;
     }
     bins.startChunks(chunks.size());
     tbb::parallel_for(size_t{0}, chunks.size(), [&](size_t k) {
       const size_t c = chunks.size() - 1 - k;
-      bins.binChunk(c, chunks[c], format, reach, &SetupTriangles<0>::id, nullptr,
-                    withTests ? tests[c].data() : nullptr);
+      bins.binChunk(c, chunks[c], format, reach, &SetupTriangles<0>::id);
     });
     bins.finishChunks(b.stats);
   });
@@ -102,9 +95,6 @@ TEST(CoarseBins, EveryTileGetsTheEntriesOfOneLevelBinning) {
   const PixelRect screen{0, 0, 1001, 587};
   std::mt19937 rng(5);
   size_t coarseTotal = 0;
-  // Triangles over two to four tiles, which setup's corner tests bin, and those of them with a
-  // tile rejected.
-  size_t binnedByLookup = 0, lookupRejected = 0;
   for (const FixedPointFormat format : {FixedPointFormat::d24_4(), FixedPointFormat::d16_8()})
     for (const int samples : {1, 4, 8}) {
       const int32_t reach = SamplePattern::forCount(samples).reach(format);
@@ -112,38 +102,22 @@ TEST(CoarseBins, EveryTileGetsTheEntriesOfOneLevelBinning) {
           randomChunks(screen, format, reach, rng, {60, 100, 140, 180, 220});
       const Binned one =
           binWith(BinLevels::TilesOnly, 1, screen.x1, screen.y1, chunks, format, reach);
-      for (const auto& chunk : chunks)
-        for (const SetupTriangle<0>& t : chunk) {
-          const int tx = t.bounds.x0 >> kTileShift, ty = t.bounds.y0 >> kTileShift;
-          const int tx1 = (t.bounds.x1 - 1) >> kTileShift, ty1 = (t.bounds.y1 - 1) >> kTileShift;
-          if (tx1 - tx <= 1 && ty1 - ty <= 1 && (tx1 > tx || ty1 > ty)) {
-            ++binnedByLookup;
-            const SmallTileTests bits = smallTileTests(t.edges, t.bounds, format, reach);
-            const unsigned range = (tx1 > tx ? 3u : 1u) * (ty1 > ty ? 5u : 1u);
-            lookupRejected += (range & ~bits) != 0;
-          }
-        }
       EXPECT_EQ(one.coarseEntries, 0u);
       for (const int threads : {1, 2, 4}) {
         SCOPED_TRACE(testing::Message() << format.name() << ", " << samples << " samples, "
                                         << threads << " threads");
-        for (const bool withTests : {false, true}) {
-          SCOPED_TRACE(withTests ? "with setup's corner tests" : "without corner tests");
-          const Binned two = binWith(BinLevels::Coarse, threads, screen.x1, screen.y1, chunks,
-                                     format, reach, false, withTests);
-          ASSERT_EQ(two.entries.size(), one.entries.size());
-          for (size_t t = 0; t < one.entries.size(); ++t)
-            ASSERT_EQ(two.entries[t], one.entries[t]) << "tile " << t;
-          EXPECT_EQ(two.entryCount, one.entryCount);
-          EXPECT_EQ(two.stats, one.stats);
-          coarseTotal += two.coarseEntries;
-        }
+        const Binned two = binWith(BinLevels::Coarse, threads, screen.x1, screen.y1, chunks, format,
+                                   reach);
+        ASSERT_EQ(two.entries.size(), one.entries.size());
+        for (size_t t = 0; t < one.entries.size(); ++t)
+          ASSERT_EQ(two.entries[t], one.entries[t]) << "tile " << t;
+        EXPECT_EQ(two.entryCount, one.entryCount);
+        EXPECT_EQ(two.stats, one.stats);
+        coarseTotal += two.coarseEntries;
       }
     }
   // The coarse level was used, and widely: each full-screen half covers about 60 coarse tiles.
-  EXPECT_GT(coarseTotal, 2u * 6u * 3u * 2u * 50u * 40u);
-  EXPECT_GT(binnedByLookup, 200u);
-  EXPECT_GT(lookupRejected, 20u);
+  EXPECT_GT(coarseTotal, 6u * 3u * 2u * 50u * 40u);
 }
 
 // The front end's binning, chunk by chunk in the tasks that set the chunks up, gives every tile
@@ -167,17 +141,14 @@ TEST(CoarseBins, BinningChunkByChunkGivesTheSameBins) {
           SCOPED_TRACE(testing::Message() << format.name() << ", " << samples << " samples, "
                                           << threads << " threads, levels "
                                           << int(levels == BinLevels::Coarse));
-          for (const bool withTests : {false, true}) {
-            SCOPED_TRACE(withTests ? "with setup's corner tests" : "without corner tests");
-            const Binned byChunk = binWith(levels, threads, screen.x1, screen.y1, chunks, format,
-                                           reach, true, withTests);
-            ASSERT_EQ(byChunk.entries.size(), whole.entries.size());
-            for (size_t t = 0; t < whole.entries.size(); ++t)
-              ASSERT_EQ(byChunk.entries[t], whole.entries[t]) << "tile " << t;
-            EXPECT_EQ(byChunk.entryCount, whole.entryCount);
-            EXPECT_EQ(byChunk.coarseEntries, whole.coarseEntries);
-            EXPECT_EQ(byChunk.stats, whole.stats);
-          }
+          const Binned byChunk =
+              binWith(levels, threads, screen.x1, screen.y1, chunks, format, reach, true);
+          ASSERT_EQ(byChunk.entries.size(), whole.entries.size());
+          for (size_t t = 0; t < whole.entries.size(); ++t)
+            ASSERT_EQ(byChunk.entries[t], whole.entries[t]) << "tile " << t;
+          EXPECT_EQ(byChunk.entryCount, whole.entryCount);
+          EXPECT_EQ(byChunk.coarseEntries, whole.coarseEntries);
+          EXPECT_EQ(byChunk.stats, whole.stats);
         }
         entries += whole.entryCount;
         coarse += whole.coarseEntries;
