@@ -10,6 +10,7 @@
 #include <tbb/task_arena.h>
 
 #include "pipeline/draw.h"
+#include "pipeline/rect_early_depth.h"
 #include "rasterizer/rect_coverage.h"
 #include "scene/camera.h"
 #include "scene/mesh.h"
@@ -308,6 +309,32 @@ void BM_RasterSmallRect(benchmark::State& state, const CoverageKernel* kernel, i
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(jobs.size()));
 }
 
+// The same kind of pairs, every rectangle short of the whole tile, through the back end's fused
+// raster and early depth (rect_early_depth.h) of each kernel's target: coverage, the depth test
+// (less) and the depth write of each pair against one tile of depths, as W4 runs them.
+void BM_RasterRectEarlyDepth(benchmark::State& state, const CoverageKernel* kernel, int bits) {
+  const FixedPointFormat f = FixedPointFormat::withFractionBits(bits);
+  const std::vector<SetupTriangle<3>> tris = setUp(randomTriangles(20000, 10, 5), f);
+  struct Job { size_t tri; int tx, ty; };
+  std::vector<Job> jobs;
+  for (size_t i = 0; i < tris.size(); ++i) {
+    const PixelRect& b = tris[i].bounds;
+    for (int ty = b.y0 >> 3; ty <= (b.y1 - 1) >> 3; ++ty)
+      for (int tx = b.x0 >> 3; tx <= (b.x1 - 1) >> 3; ++tx) {
+        const TileRect r = tileRectOf(b, tx, ty);
+        if ((r.x1 - r.x0) * (r.y1 - r.y0) < 64) jobs.push_back({i, tx, ty});
+      }
+  }
+  const RectEarlyDepthFn fn = rectEarlyDepthFor(*kernel);
+  const RectDraw draw{f, CompareOp::Less, true};
+  std::array<float, 64> depth;
+  depth.fill(1.0f);
+  for (auto _ : state)
+    for (const Job& j : jobs) benchmark::DoNotOptimize(fn(tris[j.tri], j.tx, j.ty, draw, depth.data()));
+  state.SetLabel(kernel->name + " " + f.name());
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(jobs.size()));
+}
+
 void BM_InterpolateThreeVaryings(benchmark::State& state) {
   const std::vector<SetupTriangle<3>> tris = setUp(randomTriangles(1000, 500, 4), FixedPointFormat::d24_4());
   Varyings<3> v;
@@ -390,6 +417,12 @@ const bool kRegistered = [] {
           ("BM_RasterSmallRect/" + k.name + "/" + std::to_string(bits)).c_str(),
           BM_RasterSmallRect, &k, bits)
           ->Unit(benchmark::kMicrosecond);
+    for (const CoverageKernel& k : kernels)
+      if (k.simd)
+        benchmark::RegisterBenchmark(
+            ("BM_RasterRectEarlyDepth/" + k.name + "/" + std::to_string(bits)).c_str(),
+            BM_RasterRectEarlyDepth, &k, bits)
+            ->Unit(benchmark::kMicrosecond);
   }
   return true;
 }();

@@ -33,6 +33,10 @@ struct ExecutionOptions {
   CoverageKernel coverage = bestCoverageKernel();
   BackEndTarget backEnd = BackEndTarget::Auto;
   BinLevels binLevels = BinLevels::Coarse;
+  // Hidden-surface removal before shading (tile_loop.h): where a pixel keeps its last passing
+  // fragment's colour, a tile shades only the fragments it keeps. Off, every passing fragment is
+  // shaded as it passes; the output and the statistics are the same either way.
+  bool deferShading = true;
   // Memory kept between draws (scratch_memory.h); null: each draw allocates its own. The same
   // object may serve any number of draws, one after another or at once.
   ScratchMemory* memory = nullptr;

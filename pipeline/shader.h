@@ -19,6 +19,11 @@
 //                                               whose results are thrown away; then it runs on
 //                                               whole rows of eight lanes, which the compiler
 //                                               vectorises (kMayDiscard and kDerivatives false)
+//   static constexpr bool kSideEffects = true;  it writes something besides its result (a probe
+//                                               that counts or records fragments): it runs once
+//                                               per passing fragment, as the fragment passes.
+//                                               Otherwise a tile may shade only the fragments it
+//                                               keeps (tile_loop.h, ExecutionOptions::deferShading)
 // Shaders are called through templates, so they inline into the stage loops.
 #pragma once
 

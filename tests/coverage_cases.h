@@ -84,6 +84,7 @@ inline WindowTriangle randomTriangle(std::mt19937_64& rng, FixedPointFormat form
 struct TriangleHashShader {
   static constexpr int kVaryings = 0;
   static constexpr bool kMayDiscard = false;
+  static constexpr bool kSideEffects = true;  // records every passing fragment
   uint64_t* hashes;
   int width;
   PixelResult operator()(const Fragment<0>& f) const {

@@ -36,6 +36,7 @@ struct CountingVS {
 struct CountingPS {
   static constexpr int kVaryings = 1;
   static constexpr bool kMayDiscard = false;
+  static constexpr bool kSideEffects = true;  // runs once per passing fragment
   std::atomic<uint64_t>* calls;
 
   PixelResult operator()(const Fragment<1>& f) const {

@@ -49,6 +49,7 @@ template <bool Discard>
 struct ProbeShader {
   static constexpr int kVaryings = 0;
   static constexpr bool kMayDiscard = Discard;
+  static constexpr bool kSideEffects = true;  // runs once per passing fragment
   std::atomic<uint64_t>* invocations;
 
   PixelResult operator()(const Fragment<0>& f) const {

@@ -1,0 +1,165 @@
+// Hidden-surface removal before shading (tile_loop.h, ExecutionOptions::deferShading): a tile
+// shades only the fragments it keeps, and the colour, depth, counts and statistics equal those of
+// shading every passing fragment as it passes; the shader runs exactly once per kept pixel.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <random>
+
+#include "bench/workloads.h"
+#include "pipeline/draw.h"
+#include "shaders_cpp/lambert.h"
+#include "shaders_cpp/transform.h"
+#include "shaders_cpp/w1_lambert.h"
+#include "tests/window_draw.h"
+
+namespace rast {
+namespace {
+
+using testing_support::ClipVertex;
+using testing_support::ClipVertexShader;
+using testing_support::DrawnFrame;
+using testing_support::sameFrame;
+
+// W1's shading, run pixel by pixel (not kWholeRows), counting its runs.
+struct CountingShader {
+  static constexpr int kVaryings = 3;
+  static constexpr bool kMayDiscard = false;
+  std::atomic<uint64_t>* runs;
+  PixelResult operator()(const Fragment<3>& f) const {
+    runs->fetch_add(1, std::memory_order_relaxed);
+    return W1LambertShader{}(f);
+  }
+};
+
+PipelineState depthState(int width, int height) {
+  PipelineState state;
+  state.viewport = {0, 0, width, height};
+  state.depth.compare = CompareOp::Less;
+  state.depth.write = true;
+  state.clear = ClearValues{glm::vec4(0.1f, 0.2f, 0.3f, 1.0f), 1.0f};
+  return state;
+}
+
+template <class PS, class VS>
+DrawnFrame render(int width, int height, const PipelineState& state, const VS& vs,
+                  std::span<const typename VS::Vertex> vertices,
+                  std::span<const uint32_t> indices, int threads, bool defer,
+                  BackEndTarget target = BackEndTarget::Auto) {
+  ExecutionOptions exec;
+  exec.threads = threads;
+  exec.deferShading = defer;
+  exec.backEnd = target;
+  return testing_support::drawFrame<PS>(width, height, 1, true, state, vs, vertices, indices, exec);
+}
+
+// The bunny, closed, drawn without culling: its back faces pass first where they are drawn first,
+// then lose to the front faces, so a third of the passing fragments are overwritten in their tile.
+TEST(DeferredShading, BunnyEqualsShadingEveryPassingFragment) {
+  constexpr int kWidth = 480, kHeight = 270;
+  workloads::LitMeshScene scene;
+  ASSERT_TRUE(workloads::loadLitMeshScene(std::string(RASTER_SHARED_MESHES) + "/bunny.obj",
+                                          kWidth, kHeight, scene));
+  const WorldNormalVertexShader vs{glm::mat4(1.0f), scene.viewProjection};
+  const std::span<const MeshVertex> vertices = scene.mesh.vertices;
+  const std::span<const uint32_t> indices = scene.mesh.indices;
+  for (const CompareOp op : {CompareOp::Less, CompareOp::LessEqual, CompareOp::Always})
+    for (const int threads : {1, 2})
+      for (const BackEndTarget target : {BackEndTarget::Auto, BackEndTarget::Baseline}) {
+        SCOPED_TRACE(testing::Message() << "op " << int(op) << ", " << threads
+                                        << " threads, back end " << int(target));
+        PipelineState state = depthState(kWidth, kHeight);
+        state.depth.compare = op;
+        const DrawnFrame deferred =
+            render<W1LambertShader>(kWidth, kHeight, state, vs, vertices, indices, threads, true, target);
+        EXPECT_TRUE(sameFrame(deferred, render<W1LambertShader>(kWidth, kHeight, state, vs, vertices,
+                                                                indices, threads, false, target)));
+        EXPECT_TRUE(sameFrame(
+            render<LambertShader>(kWidth, kHeight, state, vs, vertices, indices, threads, true, target),
+            render<LambertShader>(kWidth, kHeight, state, vs, vertices, indices, threads, false, target)));
+        EXPECT_GT(deferred.stats.pixelShaderInvocations, 20000u);
+      }
+}
+
+// The shader runs once per pixel the frame keeps, where shading as fragments pass runs it once per
+// passing fragment; both count every passing fragment. Random clip-space triangles stacked over a
+// frame whose size leaves partial tiles at the right and bottom edges.
+TEST(DeferredShading, ShaderRunsOncePerKeptPixel) {
+  constexpr int kWidth = 203, kHeight = 117;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<ClipVertex> vertices;
+  std::vector<uint32_t> indices;
+  for (int i = 0; i < 4000; ++i) {
+    const float cx = 2.2f * unit(rng) - 1.1f, cy = 2.2f * unit(rng) - 1.1f;
+    const float size = i % 50 == 0 ? 1.5f : 0.15f;  // a few large ones cover whole tiles
+    for (int v = 0; v < 3; ++v) {
+      const float w = 0.5f + unit(rng);
+      vertices.push_back({glm::vec4((cx + size * (unit(rng) - 0.5f)) * w,
+                                    (cy + size * (unit(rng) - 0.5f)) * w, unit(rng) * w, w),
+                          glm::vec3(unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng))});
+      indices.push_back(uint32_t(vertices.size() - 1));
+    }
+  }
+  const ClipVertexShader vs;
+  const PipelineState state = depthState(kWidth, kHeight);
+  for (const int threads : {1, 2}) {
+    SCOPED_TRACE(testing::Message() << threads << " threads");
+    DrawnFrame frames[2];
+    uint64_t runs[2];
+    for (const bool defer : {false, true}) {
+      std::atomic<uint64_t> counted = 0;
+      ExecutionOptions exec;
+      exec.threads = threads;
+      exec.deferShading = defer;
+      Framebuffer fb(kWidth, kHeight, true);
+      DrawnFrame& f = frames[defer];
+      ASSERT_TRUE(draw(fb, state,
+                       DrawCall<ClipVertexShader, CountingShader>{
+                           std::span<const ClipVertex>(vertices), indices, vs,
+                           CountingShader{&counted}},
+                       f.stats, exec));
+      f.color = fb.colorPlane();
+      f.depth = fb.depthPlane();
+      f.counts = fb.countPlane();
+      runs[defer] = counted;
+    }
+    EXPECT_TRUE(sameFrame(frames[0], frames[1]));
+    EXPECT_EQ(runs[false], frames[0].stats.pixelShaderInvocations);
+    // Kept pixels: those some fragment passed at (depth below the clear value of 1).
+    uint64_t kept = 0;
+    for (const float z : frames[1].depth) kept += z < 1.0f;
+    EXPECT_EQ(runs[true], kept);
+    EXPECT_LT(2 * kept, frames[1].stats.pixelShaderInvocations);  // overdraw of more than 2
+  }
+}
+
+// Blending keeps every passing fragment's colour in the result: nothing is deferred, and the
+// shader runs once per passing fragment whatever the option says.
+TEST(DeferredShading, BlendingShadesEveryPassingFragment) {
+  constexpr int kWidth = 64, kHeight = 48;
+  std::vector<ClipVertex> vertices;
+  std::vector<uint32_t> indices;
+  for (int layer = 0; layer < 4; ++layer) {
+    const float z = 0.8f - 0.1f * float(layer);  // each nearer than the last: every one passes
+    for (const glm::vec2 p : {glm::vec2(-1, -1), glm::vec2(3, -1), glm::vec2(-1, 3)}) {
+      vertices.push_back({glm::vec4(p, z, 1.0f), glm::vec3(0.2f, 0.3f, 0.9f)});
+      indices.push_back(uint32_t(vertices.size() - 1));
+    }
+  }
+  PipelineState state = depthState(kWidth, kHeight);
+  state.blend = BlendState::alphaBlend();
+  std::atomic<uint64_t> counted = 0;
+  Framebuffer fb(kWidth, kHeight);
+  PipelineStatistics stats;
+  const ClipVertexShader vs;
+  ASSERT_TRUE(draw(fb, state,
+                   DrawCall<ClipVertexShader, CountingShader>{std::span<const ClipVertex>(vertices),
+                                                              indices, vs, CountingShader{&counted}},
+                   stats));
+  EXPECT_EQ(counted, 4u * kWidth * kHeight);
+  EXPECT_EQ(stats.pixelShaderInvocations, 4u * kWidth * kHeight);
+}
+
+}  // namespace
+}  // namespace rast
