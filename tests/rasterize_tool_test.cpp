@@ -302,6 +302,31 @@ TEST_F(RasterizeTool, BinLevelsGiveTheSameImageAndCounters) {
   EXPECT_GT(stats[0].at("merge.fragments_written").get<uint64_t>(), 300u * 200u);  // the quad, then the triangle
 }
 
+// A lit mesh drawn with overdraw (no culling): the same image and counters whether tiles shade
+// only the fragments they keep or every passing one.
+TEST_F(RasterizeTool, DeferredShadingGivesTheSameImageAndCounters) {
+  std::vector<uint8_t> images[2];
+  nlohmann::json stats[2];
+  const char* modes[2] = {"on", "off"};
+  for (int k = 0; k < 2; ++k) {
+    const std::string image = path(std::string(modes[k]) + ".png").string();
+    const std::string json = path(std::string(modes[k]) + ".json").string();
+    const RunResult r = run({std::string(RASTER_SHARED_MESHES) + "/bunny.obj", "--width", "320",
+                             "--height", "240", "--cull", "none", "--shading", "lambert",
+                             "--defer-shading", modes[k], "-o", image, "--stats", json});
+    ASSERT_TRUE(r.exited);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string bytes = readFile(image);
+    images[k].assign(bytes.begin(), bytes.end());
+    stats[k] = nlohmann::json::parse(readFile(json));
+  }
+  EXPECT_EQ(images[0], images[1]);
+  for (const char* key : {"pixel.shader_invocations", "merge.depth_passed",
+                          "merge.fragments_written"})
+    EXPECT_EQ(stats[0].at(key), stats[1].at(key)) << key;
+  EXPECT_GT(stats[0].at("pixel.shader_invocations").get<uint64_t>(), 10000u);
+}
+
 TEST_F(RasterizeTool, UnknownOption) {
   expectOneLineError({"--frobnicate", "-o", path("out.png").string()}, {"--frobnicate"});
 }

@@ -86,6 +86,11 @@ std::optional<int> parseOptions(int argc, char** argv, Options& o) {
                  "Binning of large triangles: coarse (per 64x64-pixel tile first) or tiles (tile by "
                  "tile); outputs and statistics are identical for either")
       ->check(CLI::IsMember({"coarse", "tiles"}));
+  app.add_option("--defer-shading", o.deferShading,
+                 "on: where a pixel keeps its last passing fragment's colour, a tile shades only "
+                 "the fragments it keeps; off: every passing fragment as it passes; outputs and "
+                 "statistics are identical for either")
+      ->check(CLI::IsMember({"on", "off"}));
   app.add_option("--shading", o.shading,
                  "lambert, normals, depth, triangle-id, constant or blinn-phong (shadow-mapped) "
                  "(default: lambert for meshes, constant for triangle lists, the scene file's "

@@ -20,6 +20,7 @@ struct Options {
   std::string coverageKernel = "auto";
   std::string backEnd = "auto";
   std::string binLevels = "coarse";
+  std::string deferShading = "on";
   bool listKernels = false;
   std::string output, depthOutput, countOutput, statsOutput;
   std::vector<float> eye, target;

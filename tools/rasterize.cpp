@@ -288,6 +288,7 @@ int run(const Options& o) {
   exec.memory = &memory;
   exec.backEnd = o.backEnd == "baseline" ? BackEndTarget::Baseline : BackEndTarget::Auto;
   exec.binLevels = o.binLevels == "tiles" ? BinLevels::TilesOnly : BinLevels::Coarse;
+  exec.deferShading = o.deferShading == "on";
   if (!findCoverageKernel(o.coverageKernel, exec.coverage))
     return fail("coverage kernel '" + o.coverageKernel +
                 "' is not available on this machine (see --list-kernels)");
