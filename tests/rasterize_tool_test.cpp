@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -104,6 +105,35 @@ class RasterizeTool : public ::testing::Test {
     for (const std::string& m : mentions)
       EXPECT_NE(r.err.find(m), std::string::npos) << "'" << m << "' not in: " << r.err;
     EXPECT_FALSE(fs::exists(path("out.png"))) << "an image was written despite the error";
+  }
+
+  // Runs the tool once with `option` set to each of two values (and `args` besides), and expects
+  // the same image bytes and the same values of the statistics named in `keys`. Returns the first
+  // run's statistics.
+  nlohmann::json expectSameImageAndCounters(const std::vector<std::string>& args,
+                                            const std::string& option,
+                                            const std::array<std::string, 2>& values,
+                                            const std::vector<std::string>& keys) const {
+    std::string images[2];
+    nlohmann::json stats[2];
+    for (int k = 0; k < 2; ++k) {
+      const std::string image = path(values[k] + ".png").string();
+      const std::string json = path(values[k] + ".json").string();
+      std::vector<std::string> argv = args;
+      argv.insert(argv.end(), {option, values[k], "-o", image, "--stats", json});
+      const RunResult r = run(argv);
+      EXPECT_TRUE(r.exited);
+      EXPECT_EQ(r.exitCode, 0) << r.err;
+      images[k] = readFile(image);
+      if (r.exitCode != 0) return {};
+      stats[k] = nlohmann::json::parse(readFile(json));
+    }
+    EXPECT_FALSE(images[0].empty());
+    // (Not EXPECT_EQ: a failure would print both images' bytes.)
+    EXPECT_TRUE(images[0] == images[1])
+        << "the images differ with " << option << " " << values[0] << " and " << values[1];
+    for (const std::string& key : keys) EXPECT_EQ(stats[0].at(key), stats[1].at(key)) << key;
+    return stats[0];
   }
 
   fs::path dir_;
@@ -281,50 +311,25 @@ TEST_F(RasterizeTool, BinLevelsGiveTheSameImageAndCounters) {
   write("quad.txt",
         "0 0 0.5  300 0 0.5  300 200 0.5\n0 0 0.5  300 200 0.5  0 200 0.5\n"
         "20 30 0.25  170 60 0.25  90 180 0.25\n");
-  std::vector<uint8_t> images[2];
-  nlohmann::json stats[2];
-  const char* levels[2] = {"coarse", "tiles"};
-  for (int k = 0; k < 2; ++k) {
-    const std::string image = path(std::string(levels[k]) + ".png").string();
-    const std::string json = path(std::string(levels[k]) + ".json").string();
-    const RunResult r = run({path("quad.txt").string(), "--width", "300", "--height", "200",
-                             "--bin-levels", levels[k], "-o", image, "--stats", json});
-    ASSERT_TRUE(r.exited);
-    ASSERT_EQ(r.exitCode, 0) << r.err;
-    const std::string bytes = readFile(image);
-    images[k].assign(bytes.begin(), bytes.end());
-    stats[k] = nlohmann::json::parse(readFile(json));
-  }
-  EXPECT_EQ(images[0], images[1]);
-  for (const char* key : {"bin.entries", "bin.tiles_trivially_rejected",
-                          "raster.tiles_trivially_accepted", "merge.fragments_written"})
-    EXPECT_EQ(stats[0].at(key), stats[1].at(key)) << key;
-  EXPECT_GT(stats[0].at("merge.fragments_written").get<uint64_t>(), 300u * 200u);  // the quad, then the triangle
+  const nlohmann::json stats = expectSameImageAndCounters(
+      {path("quad.txt").string(), "--width", "300", "--height", "200"}, "--bin-levels",
+      {"coarse", "tiles"},
+      {"bin.entries", "bin.tiles_trivially_rejected", "raster.tiles_trivially_accepted",
+       "merge.fragments_written"});
+  ASSERT_FALSE(stats.empty());
+  EXPECT_GT(stats.at("merge.fragments_written").get<uint64_t>(), 300u * 200u);  // the quad, then the triangle
 }
 
 // A lit mesh drawn with overdraw (no culling): the same image and counters whether tiles shade
 // only the fragments they keep or every passing one.
 TEST_F(RasterizeTool, DeferredShadingGivesTheSameImageAndCounters) {
-  std::vector<uint8_t> images[2];
-  nlohmann::json stats[2];
-  const char* modes[2] = {"on", "off"};
-  for (int k = 0; k < 2; ++k) {
-    const std::string image = path(std::string(modes[k]) + ".png").string();
-    const std::string json = path(std::string(modes[k]) + ".json").string();
-    const RunResult r = run({std::string(RASTER_SHARED_MESHES) + "/bunny.obj", "--width", "320",
-                             "--height", "240", "--cull", "none", "--shading", "lambert",
-                             "--defer-shading", modes[k], "-o", image, "--stats", json});
-    ASSERT_TRUE(r.exited);
-    ASSERT_EQ(r.exitCode, 0) << r.err;
-    const std::string bytes = readFile(image);
-    images[k].assign(bytes.begin(), bytes.end());
-    stats[k] = nlohmann::json::parse(readFile(json));
-  }
-  EXPECT_EQ(images[0], images[1]);
-  for (const char* key : {"pixel.shader_invocations", "merge.depth_passed",
-                          "merge.fragments_written"})
-    EXPECT_EQ(stats[0].at(key), stats[1].at(key)) << key;
-  EXPECT_GT(stats[0].at("pixel.shader_invocations").get<uint64_t>(), 10000u);
+  const nlohmann::json stats = expectSameImageAndCounters(
+      {std::string(RASTER_SHARED_MESHES) + "/bunny.obj", "--width", "320", "--height", "240",
+       "--cull", "none", "--shading", "lambert"},
+      "--defer-shading", {"on", "off"},
+      {"pixel.shader_invocations", "merge.depth_passed", "merge.fragments_written"});
+  ASSERT_FALSE(stats.empty());
+  EXPECT_GT(stats.at("pixel.shader_invocations").get<uint64_t>(), 10000u);
 }
 
 TEST_F(RasterizeTool, UnknownOption) {
