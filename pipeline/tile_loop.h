@@ -418,6 +418,42 @@ RAST_TILE_INLINE void interpolateRows(const SetupTriangle<N>& t, int x0, int y0,
   }
 }
 
+// interpolateRows at the lanes of `lanes` only (the same operations, so the same bits), merged
+// into `out`, whose other lanes keep their values: the varyings of each visible fragment of a tile
+// gathered from the triangles that own them, for one shading pass over the tile (shadeDeferred).
+template <int N>
+RAST_TILE_INLINE void interpolateRowsWhere(const SetupTriangle<N>& t, int x0, int y0,
+                                           CoverageMask lanes, TileVaryings<N>& out) {
+  if constexpr (N > 0) {
+    const float dx0 = float(x0 - t.bounds.x0), dy0 = float(y0 - t.bounds.y0);
+    const PlaneRow invW = planeRow(t.invW, dx0);
+    std::array<PlaneRow, N> overW;
+    for (int k = 0; k < N; ++k) overW[k] = planeRow(t.varyingsOverW[k], dx0);
+    const __m128 one = _mm_set1_ps(1.0f);
+    const __m128i leftBits = _mm_setr_epi32(1, 2, 4, 8), rightBits = _mm_setr_epi32(16, 32, 64, 128);
+    const RowRange rows = coveredRows(lanes);
+    for (int row = rows.begin; row < rows.end; ++row) {
+      const int bits = int(lanes >> (kTileSize * row) & 0xff);
+      if (!bits) continue;
+      const __m128i rowBits = _mm_set1_epi32(bits);
+      const __m128 takeLeft = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(rowBits, leftBits), leftBits));
+      const __m128 takeRight = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(rowBits, rightBits), rightBits));
+      const __m128 dy = _mm_set1_ps(dy0 + float(row));
+      const __m128 wLeft = _mm_div_ps(one, _mm_add_ps(invW.left, _mm_mul_ps(invW.ddy, dy)));
+      const __m128 wRight = _mm_div_ps(one, _mm_add_ps(invW.right, _mm_mul_ps(invW.ddy, dy)));
+      for (int k = 0; k < N; ++k) {
+        const __m128 down = _mm_mul_ps(overW[k].ddy, dy);
+        float* o = &out[k][size_t(row) * kTileSize];
+        const __m128 left = _mm_mul_ps(_mm_add_ps(overW[k].left, down), wLeft);
+        const __m128 right = _mm_mul_ps(_mm_add_ps(overW[k].right, down), wRight);
+        _mm_storeu_ps(o, _mm_or_ps(_mm_and_ps(takeLeft, left), _mm_andnot_ps(takeLeft, _mm_loadu_ps(o))));
+        _mm_storeu_ps(o + 4, _mm_or_ps(_mm_and_ps(takeRight, right),
+                                       _mm_andnot_ps(takeRight, _mm_loadu_ps(o + 4))));
+      }
+    }
+  }
+}
+
 // A kShadesPerTriangle shader's one run for a triangle in a tile, at pixel `bit` of the tile.
 template <PixelShader PS, int N>
 RAST_TILE_INLINE PixelResult shadeOncePerTriangle(const SetupTriangle<N>& t, int x0, int y0,
@@ -742,7 +778,49 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
   tile.deferredCount = 0;
   // The listed fragments, last first: a lane a later triangle wrote is not shaded again.
   auto shadeDeferred = [&]() RAST_TILE_LAMBDA {
-    if constexpr (kMayDeferShading) {
+    if constexpr (kMayDeferShading && kShadesWholeRows<PS>) {
+      // A shader safe on any lane runs once over the rows the visible lanes touch, each lane with
+      // the varyings of the triangle that owns it, instead of once over each triangle's rows (W1:
+      // a tile's visible triangles cover a few pixels of two or three rows each). What the shader
+      // gets at a lane is what shadePixels gives it there (interpolateRowsWhere has
+      // interpolateRows' bits, and depth, facing and id are the owner's), so the colours are the
+      // same bits. Lanes that no fragment owns are shaded from whatever they hold and not written.
+      if (tile.deferredCount == 0) return;
+      TileVaryings<N> varyings{};
+      std::array<uint8_t, kTileLanes> owner{};  // per lane: its entry in tile.deferred
+      static_assert(TileBuffer::kMaxDeferred <= 256);
+      CoverageMask later = 0;
+      for (int k = tile.deferredCount; k-- > 0 && later != validLanes;) {
+        const DeferredShading& d = tile.deferred[size_t(k)];
+        const CoverageMask visible = d.passed & ~later;
+        later |= d.passed;
+        if (!visible) continue;
+        interpolateRowsWhere<N>(triangles[d.triangle], x0, y0, visible, varyings);
+        for (CoverageMask m = visible; m; m &= m - 1) owner[size_t(std::countr_zero(m))] = uint8_t(k);
+      }
+      const RowRange rows = coveredRows(later);
+      for (int row = rows.begin; row < rows.end; ++row)
+        for (int lx = 0; lx < kTileSize; ++lx) {
+          const int bit = row * kTileSize + lx;
+          const SetupTriangle<N>& t = triangles[tile.deferred[owner[size_t(bit)]].triangle];
+          Fragment<N> fragment;
+          for (int k = 0; k < N; ++k) fragment.varyings[k] = varyings[k][bit];
+          fragment.x = x0 + lx;
+          fragment.y = y0 + row;
+          fragment.depth = interpolateDepth(t, float(fragment.x - t.bounds.x0),
+                                            float(fragment.y - t.bounds.y0));
+          fragment.frontFacing = t.frontFacing();
+          fragment.primitiveId = t.primitiveId();
+          const glm::vec4 c = shader(fragment).color;
+          shaded.r[bit] = c.r;
+          shaded.g[bit] = c.g;
+          shaded.b[bit] = c.b;
+          shaded.a[bit] = c.a;
+        }
+      packRowColors(shaded, rows.begin, rows.end, packed);
+      copyLanesWhere(later, packed, tile.color[0]);
+      tile.deferredCount = 0;
+    } else if constexpr (kMayDeferShading) {
       CoverageMask later = 0;
       for (int k = tile.deferredCount; k-- > 0 && later != validLanes;) {
         const DeferredShading& d = tile.deferred[size_t(k)];

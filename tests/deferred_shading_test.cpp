@@ -134,6 +134,62 @@ TEST(DeferredShading, ShaderRunsOncePerKeptPixel) {
   }
 }
 
+// A kWholeRows shader whose colour depends on every input a fragment has: a tile shades its kept
+// pixels in one pass over their rows, each lane with the varyings, depth, facing and id of the
+// triangle that owns it, and the result equals shading as fragments pass and shading pixel by
+// pixel. Random triangles of both facings (no culling) and ids up to 4000, stacked deep.
+struct EveryInputShader {
+  static constexpr int kVaryings = 3;
+  static constexpr bool kMayDiscard = false;
+  static constexpr bool kWholeRows = true;  // arithmetic only: safe on any lane
+  PixelResult operator()(const Fragment<3>& f) const {
+    const float id = float(f.primitiveId % 61) / 61.0f;
+    const float where = float((f.x * 3 + f.y * 5) & 15) / 32.0f;
+    return {glm::vec4(glm::fract(f.varyings[0] * 3.0f + f.depth * 17.0f),
+                      glm::fract(f.varyings[1] * 2.0f + id), (f.frontFacing ? 0.5f : 0.0f) + where,
+                      glm::fract(f.varyings[2] + f.depth * 5.0f))};
+  }
+};
+struct EveryInputPerPixel {  // the same shader without kWholeRows: run on kept pixels one by one
+  static constexpr int kVaryings = 3;
+  static constexpr bool kMayDiscard = false;
+  PixelResult operator()(const Fragment<3>& f) const { return EveryInputShader{}(f); }
+};
+static_assert(kShadesWholeRows<EveryInputShader> && !kShadesWholeRows<EveryInputPerPixel>);
+
+TEST(DeferredShading, OnePassPerTileGivesEachLaneItsOwnersInputs) {
+  constexpr int kWidth = 203, kHeight = 117;
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<ClipVertex> vertices;
+  std::vector<uint32_t> indices;
+  for (int i = 0; i < 4000; ++i) {
+    const float cx = 2.2f * unit(rng) - 1.1f, cy = 2.2f * unit(rng) - 1.1f;
+    const float size = i % 50 == 0 ? 1.5f : 0.12f;  // a few cover whole tiles
+    for (int v = 0; v < 3; ++v) {
+      const float w = 0.5f + unit(rng);
+      vertices.push_back({glm::vec4((cx + size * (unit(rng) - 0.5f)) * w,
+                                    (cy + size * (unit(rng) - 0.5f)) * w, unit(rng) * w, w),
+                          glm::vec3(unit(rng), unit(rng), unit(rng))});
+      indices.push_back(uint32_t(vertices.size() - 1));
+    }
+  }
+  const ClipVertexShader vs;
+  const std::span<const ClipVertex> span(vertices);
+  const PipelineState state = depthState(kWidth, kHeight);
+  for (const int threads : {1, 2})
+    for (const BackEndTarget target : {BackEndTarget::Auto, BackEndTarget::Baseline}) {
+      SCOPED_TRACE(testing::Message() << threads << " threads, back end " << int(target));
+      const DrawnFrame rows = render<EveryInputShader>(kWidth, kHeight, state, vs, span, indices,
+                                                       threads, true, target);
+      EXPECT_TRUE(sameFrame(rows, render<EveryInputShader>(kWidth, kHeight, state, vs, span,
+                                                           indices, threads, false, target)));
+      EXPECT_TRUE(sameFrame(rows, render<EveryInputPerPixel>(kWidth, kHeight, state, vs, span,
+                                                             indices, threads, true, target)));
+      EXPECT_GT(rows.stats.pixelShaderInvocations, 3u * kWidth * kHeight / 2);  // passing, not kept
+    }
+}
+
 // Blending keeps every passing fragment's colour in the result: nothing is deferred, and the
 // shader runs once per passing fragment whatever the option says.
 TEST(DeferredShading, BlendingShadesEveryPassingFragment) {
