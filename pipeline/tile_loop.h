@@ -395,9 +395,11 @@ RAST_TILE_INLINE RowRange coveredRows(CoverageMask mask) {
 template <int N>
 using TileVaryings = std::array<TileLanes<float>, N>;
 
-template <int N>
-RAST_TILE_INLINE void interpolateRows(const SetupTriangle<N>& t, int x0, int y0, int rowBegin,
-                                      int rowEnd, TileVaryings<N>& out) {
+// Rows [rowBegin, rowEnd) of the varyings, handed to store(row, k, left, right) as two
+// four-lane halves, so that every caller gets the same bits.
+template <int N, class Store>
+RAST_TILE_INLINE void forEachInterpolatedRow(const SetupTriangle<N>& t, int x0, int y0,
+                                             int rowBegin, int rowEnd, Store&& store) {
   if constexpr (N > 0) {
     const float dx0 = float(x0 - t.bounds.x0), dy0 = float(y0 - t.bounds.y0);
     const PlaneRow invW = planeRow(t.invW, dx0);
@@ -410,48 +412,43 @@ RAST_TILE_INLINE void interpolateRows(const SetupTriangle<N>& t, int x0, int y0,
       const __m128 wRight = _mm_div_ps(one, _mm_add_ps(invW.right, _mm_mul_ps(invW.ddy, dy)));
       for (int k = 0; k < N; ++k) {
         const __m128 down = _mm_mul_ps(overW[k].ddy, dy);
-        float* o = &out[k][size_t(row) * kTileSize];
-        _mm_storeu_ps(o, _mm_mul_ps(_mm_add_ps(overW[k].left, down), wLeft));
-        _mm_storeu_ps(o + 4, _mm_mul_ps(_mm_add_ps(overW[k].right, down), wRight));
+        store(row, k, _mm_mul_ps(_mm_add_ps(overW[k].left, down), wLeft),
+              _mm_mul_ps(_mm_add_ps(overW[k].right, down), wRight));
       }
     }
   }
 }
 
-// interpolateRows at the lanes of `lanes` only (the same operations, so the same bits), merged
-// into `out`, whose other lanes keep their values: the varyings of each visible fragment of a tile
-// gathered from the triangles that own them, for one shading pass over the tile (shadeDeferred).
+template <int N>
+RAST_TILE_INLINE void interpolateRows(const SetupTriangle<N>& t, int x0, int y0, int rowBegin,
+                                      int rowEnd, TileVaryings<N>& out) {
+  forEachInterpolatedRow<N>(t, x0, y0, rowBegin, rowEnd,
+                            [&](int row, int k, __m128 left, __m128 right) RAST_TILE_LAMBDA {
+                              float* o = &out[k][size_t(row) * kTileSize];
+                              _mm_storeu_ps(o, left);
+                              _mm_storeu_ps(o + 4, right);
+                            });
+}
+
+// interpolateRows at the lanes of `lanes` only, merged into `out`, whose other lanes keep their
+// values: the varyings of each visible fragment of a tile gathered from the triangles that own
+// them, for one shading pass over the tile (shadeDeferred).
 template <int N>
 RAST_TILE_INLINE void interpolateRowsWhere(const SetupTriangle<N>& t, int x0, int y0,
                                            CoverageMask lanes, TileVaryings<N>& out) {
-  if constexpr (N > 0) {
-    const float dx0 = float(x0 - t.bounds.x0), dy0 = float(y0 - t.bounds.y0);
-    const PlaneRow invW = planeRow(t.invW, dx0);
-    std::array<PlaneRow, N> overW;
-    for (int k = 0; k < N; ++k) overW[k] = planeRow(t.varyingsOverW[k], dx0);
-    const __m128 one = _mm_set1_ps(1.0f);
-    const __m128i leftBits = _mm_setr_epi32(1, 2, 4, 8), rightBits = _mm_setr_epi32(16, 32, 64, 128);
-    const RowRange rows = coveredRows(lanes);
-    for (int row = rows.begin; row < rows.end; ++row) {
-      const int bits = int(lanes >> (kTileSize * row) & 0xff);
-      if (!bits) continue;
-      const __m128i rowBits = _mm_set1_epi32(bits);
-      const __m128 takeLeft = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(rowBits, leftBits), leftBits));
-      const __m128 takeRight = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(rowBits, rightBits), rightBits));
-      const __m128 dy = _mm_set1_ps(dy0 + float(row));
-      const __m128 wLeft = _mm_div_ps(one, _mm_add_ps(invW.left, _mm_mul_ps(invW.ddy, dy)));
-      const __m128 wRight = _mm_div_ps(one, _mm_add_ps(invW.right, _mm_mul_ps(invW.ddy, dy)));
-      for (int k = 0; k < N; ++k) {
-        const __m128 down = _mm_mul_ps(overW[k].ddy, dy);
+  const __m128i leftBits = _mm_setr_epi32(1, 2, 4, 8), rightBits = _mm_setr_epi32(16, 32, 64, 128);
+  const RowRange rows = coveredRows(lanes);
+  forEachInterpolatedRow<N>(
+      t, x0, y0, rows.begin, rows.end,
+      [&](int row, int k, __m128 left, __m128 right) RAST_TILE_LAMBDA {
+        const __m128i rowBits = _mm_set1_epi32(int(lanes >> (kTileSize * row) & 0xff));
+        const __m128 takeLeft = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(rowBits, leftBits), leftBits));
+        const __m128 takeRight = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(rowBits, rightBits), rightBits));
         float* o = &out[k][size_t(row) * kTileSize];
-        const __m128 left = _mm_mul_ps(_mm_add_ps(overW[k].left, down), wLeft);
-        const __m128 right = _mm_mul_ps(_mm_add_ps(overW[k].right, down), wRight);
         _mm_storeu_ps(o, _mm_or_ps(_mm_and_ps(takeLeft, left), _mm_andnot_ps(takeLeft, _mm_loadu_ps(o))));
         _mm_storeu_ps(o + 4, _mm_or_ps(_mm_and_ps(takeRight, right),
                                        _mm_andnot_ps(takeRight, _mm_loadu_ps(o + 4))));
-      }
-    }
-  }
+      });
 }
 
 // A kShadesPerTriangle shader's one run for a triangle in a tile, at pixel `bit` of the tile.
@@ -498,6 +495,31 @@ RAST_TILE_INLINE void packRowColors(const ShadedColors& c, int rowBegin, int row
                      _mm_slli_epi32(colorBytes4(_mm_loadu_ps(&c.a[i])), 24)));
     _mm_storeu_si128(reinterpret_cast<__m128i*>(&out[i]), rgba);
   }
+}
+
+// A kWholeRows shader over every lane of rows `rows`, each lane's varyings from `varyings` and its
+// depth, facing and primitive id from triangleAt(bit), the colours stored in `out`.
+template <PixelShader PS, int N, class TriangleAt>
+RAST_TILE_INLINE void shadeWholeRows(RowRange rows, int x0, int y0, const TileVaryings<N>& varyings,
+                                     TriangleAt&& triangleAt, const PS& shader, ShadedColors& out) {
+  for (int row = rows.begin; row < rows.end; ++row)
+    for (int lx = 0; lx < kTileSize; ++lx) {
+      const int bit = row * kTileSize + lx;
+      const SetupTriangle<N>& t = triangleAt(bit);
+      Fragment<N> fragment;
+      for (int k = 0; k < N; ++k) fragment.varyings[k] = varyings[k][bit];
+      fragment.x = x0 + lx;
+      fragment.y = y0 + row;
+      fragment.depth = interpolateDepth(t, float(fragment.x - t.bounds.x0),
+                                        float(fragment.y - t.bounds.y0));
+      fragment.frontFacing = t.frontFacing();
+      fragment.primitiveId = t.primitiveId();
+      const glm::vec4 c = shader(fragment).color;
+      out.r[bit] = c.r;
+      out.g[bit] = c.g;
+      out.b[bit] = c.b;
+      out.a[bit] = c.a;
+    }
 }
 
 // Runs the pixel shader on the pixels of `pixels` and stores their colours in `out`; returns the
@@ -559,23 +581,9 @@ RAST_TILE_INLINE CoverageMask shadePixels(const SetupTriangle<N>& t, int x0, int
     const RowRange rows = coveredRows(pixels);
     TileVaryings<N> varyings;
     interpolateRows<N>(t, x0, y0, rows.begin, rows.end, varyings);
-    for (int row = rows.begin; row < rows.end; ++row)
-      for (int lx = 0; lx < kTileSize; ++lx) {
-        const int bit = row * kTileSize + lx;
-        Fragment<N> fragment;
-        for (int k = 0; k < N; ++k) fragment.varyings[k] = varyings[k][bit];
-        fragment.x = x0 + lx;
-        fragment.y = y0 + row;
-        fragment.depth = interpolateDepth(t, float(fragment.x - t.bounds.x0),
-                                          float(fragment.y - t.bounds.y0));
-        fragment.frontFacing = t.frontFacing();
-        fragment.primitiveId = t.primitiveId();
-        const glm::vec4 c = shader(fragment).color;
-        out.r[bit] = c.r;
-        out.g[bit] = c.g;
-        out.b[bit] = c.b;
-        out.a[bit] = c.a;
-      }
+    shadeWholeRows<PS, N>(
+        rows, x0, y0, varyings,
+        [&](int) RAST_TILE_LAMBDA -> const SetupTriangle<N>& { return t; }, shader, out);
   } else {
     const RowRange rows = coveredRows(pixels);
     TileVaryings<N> varyings;
@@ -799,24 +807,12 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
         for (CoverageMask m = visible; m; m &= m - 1) owner[size_t(std::countr_zero(m))] = uint8_t(k);
       }
       const RowRange rows = coveredRows(later);
-      for (int row = rows.begin; row < rows.end; ++row)
-        for (int lx = 0; lx < kTileSize; ++lx) {
-          const int bit = row * kTileSize + lx;
-          const SetupTriangle<N>& t = triangles[tile.deferred[owner[size_t(bit)]].triangle];
-          Fragment<N> fragment;
-          for (int k = 0; k < N; ++k) fragment.varyings[k] = varyings[k][bit];
-          fragment.x = x0 + lx;
-          fragment.y = y0 + row;
-          fragment.depth = interpolateDepth(t, float(fragment.x - t.bounds.x0),
-                                            float(fragment.y - t.bounds.y0));
-          fragment.frontFacing = t.frontFacing();
-          fragment.primitiveId = t.primitiveId();
-          const glm::vec4 c = shader(fragment).color;
-          shaded.r[bit] = c.r;
-          shaded.g[bit] = c.g;
-          shaded.b[bit] = c.b;
-          shaded.a[bit] = c.a;
-        }
+      shadeWholeRows<PS, N>(
+          rows, x0, y0, varyings,
+          [&](int bit) RAST_TILE_LAMBDA -> const SetupTriangle<N>& {
+            return triangles[tile.deferred[owner[size_t(bit)]].triangle];
+          },
+          shader, shaded);
       packRowColors(shaded, rows.begin, rows.end, packed);
       copyLanesWhere(later, packed, tile.color[0]);
       tile.deferredCount = 0;

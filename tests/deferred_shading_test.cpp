@@ -53,6 +53,30 @@ DrawnFrame render(int width, int height, const PipelineState& state, const VS& v
   return testing_support::drawFrame<PS>(width, height, 1, true, state, vs, vertices, indices, exec);
 }
 
+// 4000 random clip-space triangles of about `size` (every 50th of 1.5, covering whole tiles)
+// stacked over the view at w from 0.5 to 1.5, their three varyings in [0, 1) + varyingOffset.
+struct StackedTriangles {
+  std::vector<ClipVertex> vertices;
+  std::vector<uint32_t> indices;
+};
+StackedTriangles stackedTriangles(uint32_t seed, float size, glm::vec3 varyingOffset) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  StackedTriangles out;
+  for (int i = 0; i < 4000; ++i) {
+    const float cx = 2.2f * unit(rng) - 1.1f, cy = 2.2f * unit(rng) - 1.1f;
+    const float s = i % 50 == 0 ? 1.5f : size;
+    for (int v = 0; v < 3; ++v) {
+      const float w = 0.5f + unit(rng);
+      out.vertices.push_back({glm::vec4((cx + s * (unit(rng) - 0.5f)) * w,
+                                        (cy + s * (unit(rng) - 0.5f)) * w, unit(rng) * w, w),
+                              glm::vec3(unit(rng), unit(rng), unit(rng)) + varyingOffset});
+      out.indices.push_back(uint32_t(out.vertices.size() - 1));
+    }
+  }
+  return out;
+}
+
 // The bunny, closed, drawn without culling: its back faces pass first where they are drawn first,
 // then lose to the front faces, so a third of the passing fragments are overwritten in their tile.
 TEST(DeferredShading, BunnyEqualsShadingEveryPassingFragment) {
@@ -86,21 +110,7 @@ TEST(DeferredShading, BunnyEqualsShadingEveryPassingFragment) {
 // frame whose size leaves partial tiles at the right and bottom edges.
 TEST(DeferredShading, ShaderRunsOncePerKeptPixel) {
   constexpr int kWidth = 203, kHeight = 117;
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  std::vector<ClipVertex> vertices;
-  std::vector<uint32_t> indices;
-  for (int i = 0; i < 4000; ++i) {
-    const float cx = 2.2f * unit(rng) - 1.1f, cy = 2.2f * unit(rng) - 1.1f;
-    const float size = i % 50 == 0 ? 1.5f : 0.15f;  // a few large ones cover whole tiles
-    for (int v = 0; v < 3; ++v) {
-      const float w = 0.5f + unit(rng);
-      vertices.push_back({glm::vec4((cx + size * (unit(rng) - 0.5f)) * w,
-                                    (cy + size * (unit(rng) - 0.5f)) * w, unit(rng) * w, w),
-                          glm::vec3(unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng))});
-      indices.push_back(uint32_t(vertices.size() - 1));
-    }
-  }
+  const auto [vertices, indices] = stackedTriangles(11, 0.15f, glm::vec3(-0.5f, -0.5f, 0.0f));
   const ClipVertexShader vs;
   const PipelineState state = depthState(kWidth, kHeight);
   for (const int threads : {1, 2}) {
@@ -159,21 +169,7 @@ static_assert(kShadesWholeRows<EveryInputShader> && !kShadesWholeRows<EveryInput
 
 TEST(DeferredShading, OnePassPerTileGivesEachLaneItsOwnersInputs) {
   constexpr int kWidth = 203, kHeight = 117;
-  std::mt19937 rng(23);
-  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  std::vector<ClipVertex> vertices;
-  std::vector<uint32_t> indices;
-  for (int i = 0; i < 4000; ++i) {
-    const float cx = 2.2f * unit(rng) - 1.1f, cy = 2.2f * unit(rng) - 1.1f;
-    const float size = i % 50 == 0 ? 1.5f : 0.12f;  // a few cover whole tiles
-    for (int v = 0; v < 3; ++v) {
-      const float w = 0.5f + unit(rng);
-      vertices.push_back({glm::vec4((cx + size * (unit(rng) - 0.5f)) * w,
-                                    (cy + size * (unit(rng) - 0.5f)) * w, unit(rng) * w, w),
-                          glm::vec3(unit(rng), unit(rng), unit(rng))});
-      indices.push_back(uint32_t(vertices.size() - 1));
-    }
-  }
+  const auto [vertices, indices] = stackedTriangles(23, 0.12f, glm::vec3(0.0f));
   const ClipVertexShader vs;
   const std::span<const ClipVertex> span(vertices);
   const PipelineState state = depthState(kWidth, kHeight);
