@@ -43,7 +43,11 @@ template <VertexShader VS, int N = VS::kVaryings>
   static_assert(N <= VS::kVaryings, "the pixel shader reads more varyings than the vertex shader writes");
   auto shade = [&](size_t from, ShadedVertex<N>& kept) {
     const ShadedVertex<VS::kVaryings> full = shader(vertices[from]);
-    kept.position = full.position;
+    // Component by component: a shader that builds its position from parts (a window-space
+    // vec3 and w = 1) leaves them in registers, where a whole-vec4 copy made GCC store the parts
+    // and load them back as one 16-byte value, a failed store forwarding per vertex (W2 tiny-1:
+    // 4 % of the frame).
+    for (int c = 0; c < 4; ++c) kept.position[c] = full.position[c];
     for (int k = 0; k < N; ++k) kept.varyings[k] = full.varyings[k];
   };
   // A draw that uses every vertex of its buffer (a mesh, W2's grid) needs no renumbering: the
