@@ -111,12 +111,13 @@ HWY_INLINE RectEarlyDepth Rows(const RasterTriangle& t, int tileX, int tileY,
   }
   // Per part, the depth plane's part that does not change from row to row, at0 + ddx * dx with
   // dx = (tile's first pixel less the anchor) + column, as planeRow (tile_loop.h); per row, the
-  // term ddy * dy with dy = (tile's first row less the anchor) + row. Both dx and dy are small
-  // integers, exact in float however they are formed.
+  // term ddy * dy with dy = (tile's first row less the anchor) + row, as one scalar product: the
+  // same IEEE operations as a lane's, where reading it back from a stored vector of eight (one
+  // load per row, from a store just made) drew the kernel's most samples on W2 tiny-1. Both dx
+  // and dy are small integers, exact in float however they are formed.
   constexpr bool kDepth = Op != CompareOp::Always || kWrite;
   const float dx0 = float(ox - int(t.bounds.x0)), dy0 = float(oy - int(t.bounds.y0));
   VF planeAlongRow[kParts];
-  alignas(32) float rowTerm[kTileSize];
   if constexpr (kDepth) {
     for (size_t p = 0; p < kParts; ++p)
       planeAlongRow[p] = hn::Add(
@@ -124,11 +125,6 @@ HWY_INLINE RectEarlyDepth Rows(const RasterTriangle& t, int tileX, int tileY,
           hn::Mul(hn::Set(df, t.depth.ddx),
                   hn::Add(hn::Set(df, dx0),
                           hn::ConvertTo(df, hn::Add(lane, hn::Set(di, int32_t(p * kLanes)))))));
-    for (size_t p = 0; p < kParts; ++p)
-      hn::Store(hn::Mul(hn::Set(df, t.depth.ddy),
-                        hn::Add(hn::Set(df, dy0),
-                                hn::ConvertTo(df, hn::Add(lane, hn::Set(di, int32_t(p * kLanes)))))),
-                df, rowTerm + p * kLanes);
   }
   const VF zero = hn::Zero(df), one = hn::Set(df, 1.0f);
   RectEarlyDepth out;
@@ -149,7 +145,8 @@ HWY_INLINE RectEarlyDepth Rows(const RasterTriangle& t, int tileX, int tileY,
       coveredBits |= MaskBits(di, inside) << (p * kLanes);
       if constexpr (kDepth) {
         // The plane, then interpolateDepth's clamp: z > 1 -> 1, z < 0 -> +0, NaN and -0 kept.
-        const VF plane = hn::Add(planeAlongRow[p], hn::Set(df, rowTerm[row]));
+        const float rowTerm = t.depth.ddy * (dy0 + float(row));
+        const VF plane = hn::Add(planeAlongRow[p], hn::Set(df, rowTerm));
         const VF z = hn::IfThenZeroElse(hn::Lt(plane, zero),
                                         hn::IfThenElse(hn::Gt(plane, one), one, plane));
         float* s = stored + shift + p * kLanes;
