@@ -112,9 +112,9 @@ HWY_INLINE RectEarlyDepth Rows(const RasterTriangle& t, int tileX, int tileY,
   // Per part, the depth plane's part that does not change from row to row, at0 + ddx * dx with
   // dx = (tile's first pixel less the anchor) + column, as planeRow (tile_loop.h); per row, the
   // term ddy * dy with dy = (tile's first row less the anchor) + row, as one scalar product: the
-  // same IEEE operations as a lane's, where reading it back from a stored vector of eight (one
-  // load per row, from a store just made) drew the kernel's most samples on W2 tiny-1. Both dx
-  // and dy are small integers, exact in float however they are formed.
+  // same IEEE operations as a lane's, where a vector of eight terms stored and one read back per
+  // row (a load from a store just made) had one of the kernel's largest sample counts after it on
+  // W2 tiny-1. Both dx and dy are small integers, exact in float however they are formed.
   constexpr bool kDepth = Op != CompareOp::Always || kWrite;
   const float dx0 = float(ox - int(t.bounds.x0)), dy0 = float(oy - int(t.bounds.y0));
   VF planeAlongRow[kParts];
