@@ -708,6 +708,18 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
   ShadedColors& shaded = tile.shaded;
   TileLanes<PackedColor>& packed = tile.packed;
   glm::vec4 triangleColor{};  // kShadesPerTriangle: the one result
+  // kShadesPerTriangle: the colour packed last and its packing, reused while the shader returns
+  // the same bits. Such shaders return few colours (a constant, one per facing), and comparing
+  // 16 bytes costs less than packColor's four clamps and conversions, once per triangle and tile.
+  glm::vec4 lastColor{};
+  PackedColor lastPacked = packColor(lastColor);
+  auto packTriangleColor = [&](const glm::vec4& c) RAST_TILE_LAMBDA {
+    if (std::memcmp(&c, &lastColor, sizeof c) != 0) {
+      lastColor = c;
+      lastPacked = packColor(c);
+    }
+    return lastPacked;
+  };
 
   // Deferred whole-tile writes, as a GPU keeps a tile's depth as a plane until a pixel needs its
   // own value: a triangle that covers every sample of a full tile, passes the depth test on all
@@ -999,7 +1011,8 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
         if constexpr (kShadesPerTriangle<PS>) {
           if (cfg.colorWrite) {
             // Run once, at the tile's first pixel, as the per-triangle path below does.
-            pendingColorValue = packColor(shadeOncePerTriangle(t, x0, y0, 0, shader).color);
+            pendingColorValue =
+                packTriangleColor(shadeOncePerTriangle(t, x0, y0, 0, shader).color);
             pendingColor = colorDirty = true;
             stats.pixelShaderInvocations += kTileLanes;
           }
@@ -1105,7 +1118,7 @@ RAST_TILE_INLINE void rasterizeTile(int tileX, int tileY, std::span<const uint32
           if (cfg.blend.enable) stats.samplesBlended += uint64_t(popcount64(mask[s]));
         }
       } else if constexpr (kShadesPerTriangle<PS>) {
-        const PackedColor c = packColor(triangleColor);
+        const PackedColor c = packTriangleColor(triangleColor);
         for (int s = 0; s < S; ++s) fillLanesWhere(mask[s], c, tile.color[s]);
       } else if constexpr (kShadesWholeRows<PS>) {
         const RowRange rows = coveredRows(anySample);

@@ -5,6 +5,7 @@
 // kWholeTileBit (no coverage test in the back end) is a tile that coverTile finds inside.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <random>
 
@@ -142,6 +143,56 @@ TEST(TileShortcuts, PerTriangleShadingAndDeferredWritesChangeNoBit) {
             ++cases;
           }
   EXPECT_EQ(cases, 3 * 3 * 5 * 2 * 2);
+}
+
+// Colours that differ from triangle to triangle in any one channel alone: each channel is 0.25 or
+// 1 by its own bit of a hash of the primitive id. The tile loop packs a per-triangle colour only
+// when it differs from the last one packed, and every channel must count in that comparison.
+glm::vec4 colorByHash(uint32_t primitiveId) {
+  const uint32_t h = primitiveId * 2654435761u >> 16;
+  auto channel = [&](int k) { return (h >> k & 1) ? 1.0f : 0.25f; };
+  return {channel(0), channel(1), channel(2), channel(3)};
+}
+struct HashColorPerTriangle {
+  static constexpr int kVaryings = 0;
+  static constexpr bool kMayDiscard = false;
+  static constexpr bool kPerTriangle = true;
+  PixelResult operator()(const Fragment<0>& f) const { return {colorByHash(f.primitiveId)}; }
+};
+struct HashColorPerPixel {
+  static constexpr int kVaryings = 0;
+  static constexpr bool kMayDiscard = false;
+  PixelResult operator()(const Fragment<0>& f) const { return {colorByHash(f.primitiveId)}; }
+};
+
+// Many small triangles over few tiles, no depth test: every tile takes dozens of triangles in a
+// row, and each pixel keeps the colour of the last triangle that covers it.
+TEST(TileShortcuts, PerTriangleColoursDifferingInOneChannelAreEachWritten) {
+  Scene scene{45, 37, {}, {}};
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (int k = 0; k < 3000; ++k) {
+    const uint32_t base = uint32_t(scene.vertices.size());
+    const float cx = unit(rng) * 45.0f, cy = unit(rng) * 37.0f;
+    for (int v = 0; v < 3; ++v)
+      scene.vertices.push_back(
+          {glm::vec3(cx + 6.0f * (unit(rng) - 0.5f), cy + 6.0f * (unit(rng) - 0.5f), 0.5f)});
+    for (uint32_t v : {0u, 1u, 2u}) scene.indices.push_back(base + v);
+  }
+  PipelineState state;
+  state.viewport = {0, 0, scene.width, scene.height};
+  state.positionSpace = PositionSpace::Window;
+  state.depth.compare = CompareOp::Always;
+  state.depth.write = false;
+  const Result perPixel = render<HashColorPerPixel>(scene, state, 1, 1.0f);
+  EXPECT_TRUE(sameFrame(render<HashColorPerTriangle>(scene, state, 1, 1.0f), perPixel));
+  // All sixteen colours are left on screen (besides the clear colour, where no triangle
+  // reached), so no channel is constant.
+  std::vector<PackedColor> colors = perPixel.color;
+  std::erase(colors, packColor(glm::vec4(0.5f, 0.5f, 0.5f, 1.0f)));
+  std::sort(colors.begin(), colors.end());
+  colors.erase(std::unique(colors.begin(), colors.end()), colors.end());
+  EXPECT_EQ(colors.size(), 16u);
 }
 
 // The scene exercises what it should: layers cover whole tiles (the deferred case) and later
