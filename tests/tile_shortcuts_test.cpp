@@ -25,23 +25,20 @@ glm::vec4 colorOfTriangle(uint32_t primitiveId, bool frontFacing) {
           1.0f};
 }
 
-struct PerTriangleShader {
+// A shader whose colour is `Color` of the triangle alone, declared kPerTriangle (run once per
+// triangle and tile) or not (shaded per pixel, every write per lane).
+template <glm::vec4 (*Color)(uint32_t primitiveId, bool frontFacing), bool PerTriangle>
+struct TriangleColorShader {
   static constexpr int kVaryings = 0;
   static constexpr bool kMayDiscard = false;
-  static constexpr bool kPerTriangle = true;
+  static constexpr bool kPerTriangle = PerTriangle;
   PixelResult operator()(const Fragment<0>& f) const {
-    return {colorOfTriangle(f.primitiveId, f.frontFacing)};
+    return {Color(f.primitiveId, f.frontFacing)};
   }
 };
-
-// The same shader without the declaration: shaded per pixel, every write per lane.
-struct PerPixelShader {
-  static constexpr int kVaryings = 0;
-  static constexpr bool kMayDiscard = false;
-  PixelResult operator()(const Fragment<0>& f) const {
-    return {colorOfTriangle(f.primitiveId, f.frontFacing)};
-  }
-};
+using PerTriangleShader = TriangleColorShader<colorOfTriangle, true>;
+using PerPixelShader = TriangleColorShader<colorOfTriangle, false>;
+static_assert(kShadesPerTriangle<PerTriangleShader> && !kShadesPerTriangle<PerPixelShader>);
 
 struct Scene {
   int width, height;
@@ -89,6 +86,8 @@ Scene layeredScene(uint32_t seed) {
   return s;
 }
 
+constexpr glm::vec4 kClearColor(0.5f, 0.5f, 0.5f, 1.0f);
+
 using Result = testing_support::DrawnFrame;  // counts unused
 using testing_support::sameFrame;
 
@@ -96,7 +95,7 @@ template <class PS>
 Result render(const Scene& scene, const PipelineState& state, int samples, float clearDepth,
               BackEndTarget target = BackEndTarget::Auto) {
   Framebuffer fb(scene.width, scene.height, false, samples);
-  fb.clear(glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), clearDepth);
+  fb.clear(kClearColor, clearDepth);
   const WindowSpaceVertexShader vs;
   const PS ps;
   Result r;
@@ -148,22 +147,13 @@ TEST(TileShortcuts, PerTriangleShadingAndDeferredWritesChangeNoBit) {
 // Colours that differ from triangle to triangle in any one channel alone: each channel is 0.25 or
 // 1 by its own bit of a hash of the primitive id. The tile loop packs a per-triangle colour only
 // when it differs from the last one packed, and every channel must count in that comparison.
-glm::vec4 colorByHash(uint32_t primitiveId) {
+glm::vec4 colorByHash(uint32_t primitiveId, bool /*frontFacing*/) {
   const uint32_t h = primitiveId * 2654435761u >> 16;
   auto channel = [&](int k) { return (h >> k & 1) ? 1.0f : 0.25f; };
   return {channel(0), channel(1), channel(2), channel(3)};
 }
-struct HashColorPerTriangle {
-  static constexpr int kVaryings = 0;
-  static constexpr bool kMayDiscard = false;
-  static constexpr bool kPerTriangle = true;
-  PixelResult operator()(const Fragment<0>& f) const { return {colorByHash(f.primitiveId)}; }
-};
-struct HashColorPerPixel {
-  static constexpr int kVaryings = 0;
-  static constexpr bool kMayDiscard = false;
-  PixelResult operator()(const Fragment<0>& f) const { return {colorByHash(f.primitiveId)}; }
-};
+using HashColorPerTriangle = TriangleColorShader<colorByHash, true>;
+using HashColorPerPixel = TriangleColorShader<colorByHash, false>;
 
 // Many small triangles over few tiles, no depth test: every tile takes dozens of triangles in a
 // row, and each pixel keeps the colour of the last triangle that covers it.
@@ -189,7 +179,7 @@ TEST(TileShortcuts, PerTriangleColoursDifferingInOneChannelAreEachWritten) {
   // All sixteen colours are left on screen (besides the clear colour, where no triangle
   // reached), so no channel is constant.
   std::vector<PackedColor> colors = perPixel.color;
-  std::erase(colors, packColor(glm::vec4(0.5f, 0.5f, 0.5f, 1.0f)));
+  std::erase(colors, packColor(kClearColor));
   std::sort(colors.begin(), colors.end());
   colors.erase(std::unique(colors.begin(), colors.end()), colors.end());
   EXPECT_EQ(colors.size(), 16u);
