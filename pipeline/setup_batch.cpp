@@ -21,10 +21,10 @@ namespace {
     // ScreenMapping::toWindow, and std::isfinite of its four values: |v| <= DBL_MAX is false
     // exactly for infinities and NaN.
     for (int l = 0; l < lanes; ++l) {
-      const double invW = 1.0 / double(c.p[i][3][l]);
-      wx[l] = double(c.p[i][0][l]) * invW * k.scale[0] + k.offset[0];
-      wy[l] = double(c.p[i][1][l]) * invW * k.scale[1] + k.offset[1];
-      c.z[i][l] = double(c.p[i][2][l]) * invW * k.scale[2] + k.offset[2];
+      const double invW = 1.0 / c.p[i][3][l];
+      wx[l] = c.p[i][0][l] * invW * k.scale[0] + k.offset[0];
+      wy[l] = c.p[i][1][l] * invW * k.scale[1] + k.offset[1];
+      c.z[i][l] = c.p[i][2][l] * invW * k.scale[2] + k.offset[2];
       c.invW[i][l] = invW;
       // (&, not &&: no branch per value, so the loop vectorises.)
       c.finite[l] &= int64_t(std::abs(wx[l]) <= DBL_MAX) & int64_t(std::abs(wy[l]) <= DBL_MAX) &

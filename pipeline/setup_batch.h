@@ -32,12 +32,11 @@ enum class SetupIsa { Baseline, Avx2, Avx512 };
 SetupIsa bestSetupIsa();
 const char* setupIsaName(SetupIsa isa);
 
-// Window position and snapping of a batch. In: `p`, the corners' positions as the vertices hold
-// them (float: widened to double in the vector loop, where the per-triangle add took a scalar
-// conversion per coordinate). Out: window depth and 1/w, the snapped corners and, per lane, whether every
+// Window position and snapping of a batch. In: `p`, the corners' positions (double of the
+// vertex's float). Out: window depth and 1/w, the snapped corners and, per lane, whether every
 // value is finite (a lane that is not has zero snapped corners).
 struct SetupCorners {
-  alignas(64) float p[3][4][kSetupLanes];  // corner, coordinate (x, y, z, w), lane
+  alignas(64) double p[3][4][kSetupLanes];  // corner, coordinate (x, y, z, w), lane
   alignas(64) double z[3][kSetupLanes];
   alignas(64) double invW[3][kSetupLanes];
   alignas(64) int32_t x[3][kSetupLanes];  // subpixels
@@ -115,11 +114,11 @@ class SetupBatch {
 
   void add(const std::array<const ShadedVertex<N>*, 3>& v, uint32_t primitiveId) {
     for (int i = 0; i < 3; ++i)
-      for (int c = 0; c < 4; ++c) corners_.p[i][c][count_] = v[i]->position[c];
+      for (int c = 0; c < 4; ++c) corners_.p[i][c][count_] = double(v[i]->position[c]);
     // The varyings are read now, with the positions' cache lines: at the flush, up to 31
     // triangles later, they could be gone.
     for (int i = 0; i < 3; ++i)
-      for (int k = 0; k < N; ++k) varyingValues_[k][i][count_] = v[i]->varyings[k];
+      for (int k = 0; k < N; ++k) varyingValues_[k][i][count_] = double(v[i]->varyings[k]);
     primitiveIds_[count_] = primitiveId;
     ++count_;
   }
@@ -162,7 +161,7 @@ class SetupBatch {
       for (int k = 0; k < N; ++k) {
         for (int i = 0; i < 3; ++i)
           for (int l = 0; l < n; ++l)
-            overW_[i][l] = double(varyingValues_[k][i][l]) * corners_.invW[i][l];
+            overW_[i][l] = varyingValues_[k][i][l] * corners_.invW[i][l];
         detail::planesThrough(planeInputs_, coverage_, overW_, n, varyings_[k], isa_);
       }
     }
@@ -204,8 +203,8 @@ class SetupBatch {
   [[no_unique_address]] std::conditional_t<(N > 0), detail::SetupPlanes, NoPlane> invW_;
   std::array<detail::SetupPlanes, N> varyings_;
   alignas(64) double overW_[3][detail::kSetupLanes];
-  // Per varying: its value at each corner, as SetupCorners::p.
-  alignas(64) float varyingValues_[N > 0 ? N : 1][3][detail::kSetupLanes];
+  // Per varying: its value at each corner (double of the float), as SetupCorners::p.
+  alignas(64) double varyingValues_[N > 0 ? N : 1][3][detail::kSetupLanes];
   std::array<uint32_t, kCapacity> primitiveIds_;
 };
 
