@@ -599,37 +599,52 @@ RAST_TILE_INLINE CoverageMask shadePixels(const SetupTriangle<N>& t, int x0, int
   return kept;
 }
 
-// Lanes of `mask` written, from `from` (copyLanesWhere) or one value (fillLanesWhere). Few lanes
-// (small triangles, the usual case) go lane by lane over the set bits; more, row by row over the
-// rows they touch, each row one select of its eight lanes (a row-by-row write for every mask
-// measured slower on W1 and W4; lane by lane for dense masks left W2 tiny-1000's loop-exit
-// branches and single-lane stores the largest cost of its back end). Either way each lane of the
-// mask gets the source's bits and every other lane keeps its own.
+// Lanes of `mask` written from a source of lanes: another tile's lanes (copyLanesWhere) or one
+// value in every lane (fillLanesWhere). Few lanes (small triangles, the usual case) go lane by
+// lane over the set bits; more, row by row over the rows they touch, each row one select of its
+// eight lanes (a row-by-row write for every mask measured slower on W1 and W4; lane by lane for
+// dense masks left W2 tiny-1000's loop-exit branches and single-lane stores the largest cost of
+// its back end). Either way each lane of the mask gets the source's bits and every other lane
+// keeps its own.
 inline constexpr int kSparseLanes = 8;
 // A row of eight 32-bit lanes as a GCC/Clang vector: one AVX2 register in the AVX2 tile loop, two
 // SSE2 ones in the baseline's.
 using RowBits = int32_t __attribute__((vector_size(32)));
 
-template <class T, bool kFill>
-RAST_TILE_INLINE void writeLanesWhere(CoverageMask mask, const T* from, T value, TileLanes<T>& to) {
+template <class T>
+struct LanesOf {
+  const TileLanes<T>& lanes;
+  RAST_TILE_INLINE T lane(int i) const { return lanes[size_t(i)]; }
+  RAST_TILE_INLINE void row(int r, RowBits& bits) const {
+    std::memcpy(&bits, lanes.data() + r * kTileSize, sizeof(bits));
+  }
+};
+template <class T>
+struct OneValue {
+  T value;
+  RAST_TILE_INLINE T lane(int) const { return value; }
+  RAST_TILE_INLINE void row(int, RowBits& bits) const {
+    bits = RowBits{} + std::bit_cast<int32_t>(value);
+  }
+};
+
+template <class T, class Source>
+RAST_TILE_INLINE void writeLanesWhere(CoverageMask mask, const Source& source, TileLanes<T>& to) {
   static_assert(sizeof(T) == sizeof(int32_t) && std::is_trivially_copyable_v<T>);
-  auto source = [&](int i) RAST_TILE_LAMBDA { return kFill ? value : from[i]; };
   if (popcount64(mask) <= kSparseLanes) {
     for (CoverageMask m = mask; m; m &= m - 1) {
       const int bit = std::countr_zero(m);
-      to[bit] = source(bit);
+      to[size_t(bit)] = source.lane(bit);
     }
     return;
   }
   const RowBits laneBit = {1, 2, 4, 8, 16, 32, 64, 128};
-  RowBits fill{};
-  if constexpr (kFill) fill = RowBits{} + std::bit_cast<int32_t>(value);
   const RowRange rows = coveredRows(mask);
   for (int row = rows.begin; row < rows.end; ++row) {
     T* out = to.data() + row * kTileSize;
-    RowBits before, after = fill;
+    RowBits before, after;
     std::memcpy(&before, out, sizeof(before));
-    if constexpr (!kFill) std::memcpy(&after, from + row * kTileSize, sizeof(after));
+    source.row(row, after);
     // All ones in the lanes whose bit of the row is set.
     const RowBits take = ((RowBits{} + int32_t(mask >> (row * kTileSize) & 0xffu)) & laneBit) != 0;
     const RowBits written = (after & take) | (before & ~take);
@@ -644,7 +659,7 @@ RAST_TILE_INLINE void copyLanesWhere(CoverageMask mask, const TileLanes<T>& from
     to = from;
     return;
   }
-  writeLanesWhere<T, false>(mask, from.data(), T{}, to);
+  writeLanesWhere(mask, LanesOf<T>{from}, to);
 }
 
 template <class T>
@@ -653,7 +668,7 @@ RAST_TILE_INLINE void fillLanesWhere(CoverageMask mask, T value, TileLanes<T>& t
     to.fill(value);
     return;
   }
-  writeLanesWhere<T, true>(mask, nullptr, value, to);
+  writeLanesWhere(mask, OneValue<T>{value}, to);
 }
 
 // One tile: its framebuffer values in, every binned triangle in order, the values out.
