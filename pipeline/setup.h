@@ -103,29 +103,40 @@ struct SetupContext {
   RasterMode rasterMode = RasterMode::FixedPoint;
 };
 
-// Whether a triangle whose coverage setup gave `outcome` is drawn after culling; counts why not.
-// `front`: whether it faces the viewer. Shared with SetupBatch (setup_batch.h), so that both
-// count the same way.
-inline bool acceptCoverage(SetupOutcome outcome, bool clockwiseOnScreen, const SetupContext& ctx,
-                           PipelineStatistics& stats, bool& front) {
-  if (outcome == SetupOutcome::ZeroArea) {
-    ++stats.setupZeroArea;
-    return false;
+// Whether a triangle faces the viewer.
+inline bool facesFront(bool clockwiseOnScreen, const SetupContext& ctx) {
+  return clockwiseOnScreen == (ctx.frontFace == FrontFace::Clockwise);
+}
+
+// What becomes of a triangle after coverage setup: drawn, or dropped and why.
+enum class SetupVerdict : int32_t { Drawn, ZeroArea, CulledBack, CulledFront, NoSamples };
+inline constexpr int kSetupVerdicts = 5;
+
+// Without branches, so that SetupBatch's loop over its lanes vectorises: which small triangles
+// cover no sample is as good as random (W2 tiny-1: a sixth of them), and a mispredicted branch
+// per triangle costs more than these tests. Shared with SetupBatch (setup_batch.h), so that both
+// decide and count the same way.
+inline SetupVerdict judgeCoverage(SetupOutcome outcome, bool clockwiseOnScreen,
+                                  const SetupContext& ctx) {
+  const bool front = facesFront(clockwiseOnScreen, ctx);
+  const bool culled = (ctx.cullMode == CullMode::Back && !front) ||
+                      (ctx.cullMode == CullMode::Front && front);
+  return outcome == SetupOutcome::ZeroArea  ? SetupVerdict::ZeroArea
+         : culled                           ? (front ? SetupVerdict::CulledFront
+                                                     : SetupVerdict::CulledBack)
+         : outcome == SetupOutcome::NoSamples ? SetupVerdict::NoSamples
+                                              : SetupVerdict::Drawn;
+}
+
+// Counts `count` triangles dropped for `verdict` (nothing for Drawn).
+inline void countDropped(SetupVerdict verdict, uint64_t count, PipelineStatistics& stats) {
+  switch (verdict) {
+    case SetupVerdict::Drawn: break;
+    case SetupVerdict::ZeroArea: stats.setupZeroArea += count; break;
+    case SetupVerdict::CulledBack: stats.setupCulledBack += count; break;
+    case SetupVerdict::CulledFront: stats.setupCulledFront += count; break;
+    case SetupVerdict::NoSamples: stats.setupNoSamples += count; break;
   }
-  front = clockwiseOnScreen == (ctx.frontFace == FrontFace::Clockwise);
-  if (ctx.cullMode == CullMode::Back && !front) {
-    ++stats.setupCulledBack;
-    return false;
-  }
-  if (ctx.cullMode == CullMode::Front && front) {
-    ++stats.setupCulledFront;
-    return false;
-  }
-  if (outcome == SetupOutcome::NoSamples) {
-    ++stats.setupNoSamples;
-    return false;
-  }
-  return true;
 }
 
 // Sets up one triangle whose vertices lie inside the guard band (the clipper made sure). Returns
@@ -156,12 +167,13 @@ bool setupTriangle(const std::array<const V*, 3>& v, const SetupContext& ctx,
                                      ctx.clipRect, coverage, floatEdges)
                 : setupCoverage(snapped, ctx.clipRect, ctx.format, coverage, ctx.fillRule,
                                 ctx.sampleReach);
-  bool front = true;
-  if (!acceptCoverage(outcome, coverage.clockwiseOnScreen, ctx, stats, front)) return false;
+  const SetupVerdict verdict = judgeCoverage(outcome, coverage.clockwiseOnScreen, ctx);
+  countDropped(verdict, 1, stats);
+  if (verdict != SetupVerdict::Drawn) return false;
 
   out.edges = coverage.edges;
   out.bounds = TriangleBounds(coverage.bounds);
-  out.setPrimitive(primitiveId, front);
+  out.setPrimitive(primitiveId, facesFront(coverage.clockwiseOnScreen, ctx));
 
   // Planes through the snapped positions (float mode: the float ones), so interpolation agrees
   // with the coverage it serves.

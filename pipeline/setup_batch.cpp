@@ -66,12 +66,14 @@ namespace {
     const int32_t x2 = clockwise ? c.x[2][l] : c.x[1][l], y2 = clockwise ? c.y[2][l] : c.y[1][l];
     const int32_t fromX[3] = {x0, x1, x2}, fromY[3] = {y0, y1, y2};
     const int32_t toX[3] = {x1, x2, x0}, toY[3] = {y1, y2, y0};
+    int32_t bias[3];
     for (int e = 0; e < 3; ++e) {
       const int32_t a = fromY[e] - toY[e], b = toX[e] - fromX[e];
       const bool ownsTies = (a > 0) | ((a == 0) & (b * horizontalSign > 0));
       out.a[e][l] = a;
       out.b[e][l] = b;
-      out.c[e][l] = -(int64_t(a) * fromX[e] + int64_t(b) * fromY[e]) - (ownsTies ? 0 : 1);
+      bias[e] = ownsTies ? 0 : 1;
+      out.c[e][l] = -(int64_t(a) * fromX[e] + int64_t(b) * fromY[e]) - bias[e];
     }
     out.clockwise[l] = clockwise;
 
@@ -88,9 +90,34 @@ namespace {
     out.x1[l] = bx1;
     out.y1[l] = by1;
     const bool empty = (bx0 >= bx1) | (by0 >= by1);
-    out.outcome[l] = int32_t(area == 0   ? SetupOutcome::ZeroArea
-                             : empty     ? SetupOutcome::NoSamples
-                                         : SetupOutcome::Accepted);
+    // setupCoverage's test of a triangle narrower and shorter than two pixels, at the (at most
+    // 2x2) centres in its bounds. Its corners lie within 2s of each other per axis (s: subpixels
+    // per pixel, at most 2^8), so |a|, |b| < 2s, and a centre tested lies within 3s of every
+    // corner per axis: each value a*dx + b*dy - bias is below 12 s^2 + 1 <= 2^20 in magnitude.
+    // Taken modulo 2^32 (uint32, which wraps where int32 would overflow in the lanes whose result
+    // is not used), it is exact read back as int32.
+    const uint32_t ucx = uint32_t(bx0) * uint32_t(s) + uint32_t(s / 2);
+    const uint32_t ucy = uint32_t(by0) * uint32_t(s) + uint32_t(s / 2);
+    // A centre is covered when no edge value there is negative: when the OR of the three has a
+    // clear sign bit. The sign bit is set for a centre outside the bounds.
+    const uint32_t outsideX = bx0 + 1 < bx1 ? 0 : 0x80000000u;
+    const uint32_t outsideY = by0 + 1 < by1 ? 0 : 0x80000000u;
+    uint32_t s00 = 0, s10 = outsideX, s01 = outsideY, s11 = outsideX | outsideY;
+    for (int e = 0; e < 3; ++e) {
+      const uint32_t a = uint32_t(out.a[e][l]), b = uint32_t(out.b[e][l]);
+      const uint32_t v = a * (ucx - uint32_t(fromX[e])) + b * (ucy - uint32_t(fromY[e])) -
+                         uint32_t(bias[e]);
+      const uint32_t vx = v + (a << k.fractionBits), vy = v + (b << k.fractionBits);
+      s00 |= v;
+      s10 |= vx;
+      s01 |= vy;
+      s11 |= vx + (b << k.fractionBits);
+    }
+    const bool coversCentre = int32_t(s00 & s10 & s01 & s11) >= 0;
+    const bool small = (maxX - minX < 2 * s) & (maxY - minY < 2 * s) & (k.sampleReach == 0);
+    out.outcome[l] = int32_t(area == 0                       ? SetupOutcome::ZeroArea
+                             : empty | (small & !coversCentre) ? SetupOutcome::NoSamples
+                                                               : SetupOutcome::Accepted);
   }
 }
 

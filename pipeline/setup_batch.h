@@ -141,15 +141,26 @@ class SetupBatch {
 
     detail::coverageLanes(coverageConstants_, corners_, n, coverage_, isa_);
 
-    std::array<bool, kCapacity> drawn, front;
+    // Each lane's verdict in a loop that vectorises (judgeCoverage has no branch); a lane whose
+    // corners are not all finite gets kSetupVerdicts.
+    alignas(64) int32_t verdict[kCapacity];
+    for (int l = 0; l < n; ++l)
+      verdict[l] = corners_.finite[l] ? int32_t(judgeCoverage(SetupOutcome(coverage_.outcome[l]),
+                                                              coverage_.clockwise[l] != 0, ctx_))
+                                      : kSetupVerdicts;
+    for (int v = 1; v <= kSetupVerdicts; ++v) {
+      int32_t count = 0;
+      for (int l = 0; l < n; ++l) count += verdict[l] == v;
+      if (v == kSetupVerdicts)
+        stats.clipDegenerate += uint64_t(count);
+      else
+        countDropped(SetupVerdict(v), uint64_t(count), stats);
+    }
+    std::array<uint8_t, kCapacity> drawnLanes;
+    int drawnCount = 0;
     for (int l = 0; l < n; ++l) {
-      drawn[l] = false;
-      if (!corners_.finite[l]) {
-        ++stats.clipDegenerate;
-        continue;
-      }
-      drawn[l] = acceptCoverage(SetupOutcome(coverage_.outcome[l]), coverage_.clockwise[l] != 0,
-                                ctx_, stats, front[l]);
+      drawnLanes[drawnCount] = uint8_t(l);
+      drawnCount += verdict[l] == int32_t(SetupVerdict::Drawn);
     }
 
     // Planes for every lane (those not drawn give values nobody reads).
@@ -166,8 +177,8 @@ class SetupBatch {
       }
     }
 
-    for (int l = 0; l < n; ++l) {
-      if (!drawn[l]) continue;
+    for (int d = 0; d < drawnCount; ++d) {
+      const int l = drawnLanes[d];
       // The record is assembled in a local and stored whole: built in place, emplace_back zeroed
       // it first (five stores more than the ten its fields take), and setup waited on the store
       // buffer (W2 tiny-1: a third of flush's samples at the record's first store).
@@ -175,15 +186,15 @@ class SetupBatch {
       for (int e = 0; e < 3; ++e)
         t.edges[e] = {coverage_.a[e][l], coverage_.b[e][l], coverage_.c[e][l]};
       t.bounds = {coverage_.x0[l], coverage_.y0[l], coverage_.x1[l], coverage_.y1[l]};
-      t.setPrimitive(primitiveIds_[l], front[l]);
+      t.setPrimitive(primitiveIds_[l], facesFront(coverage_.clockwise[l] != 0, ctx_));
       t.depth = plane(depth_, l);
       if constexpr (N > 0) {
         t.invW = plane(invW_, l);
         for (int k = 0; k < N; ++k) t.varyingsOverW[k] = plane(varyings_[k], l);
       }
       out.push_back(t);
-      ++stats.setupTriangles;
     }
+    stats.setupTriangles += uint64_t(drawnCount);
   }
 
  private:

@@ -14,7 +14,9 @@ namespace rast {
 enum class SetupOutcome {
   Accepted,
   ZeroArea,   // the snapped vertices are collinear
-  NoSamples,  // the bounding box, clipped to `clip`, holds no pixel centre
+  NoSamples,  // the bounding box, clipped to `clip`, holds no pixel centre; or, for a triangle
+              // narrower and shorter than two pixels without MSAA, none of those it holds is
+              // covered
 };
 
 struct CoverageSetup {

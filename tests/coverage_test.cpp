@@ -131,6 +131,8 @@ struct TileIndex {
   int x, y;
 };
 
+std::vector<TileIndex> tilesAround(const Tri& t, FixedPointFormat f);
+
 // Checks one triangle on the given tiles; returns a description of the first disagreement, or an
 // empty string.
 std::string checkTriangle(const Tri& t, const PixelRect& clip, FixedPointFormat f,
@@ -144,8 +146,20 @@ std::string checkTriangle(const Tri& t, const PixelRect& clip, FixedPointFormat 
     return what + ": ZeroArea must be reported exactly for collinear snapped vertices";
   if (ref.degenerate) return "";
   const PixelRect bounds = expectedBounds(t, clip, f);
-  if ((outcome == SetupOutcome::NoSamples) != bounds.empty())
-    return what + ": NoSamples must be reported exactly when no pixel centre is in the box";
+  // A triangle narrower and shorter than two pixels is also dropped when none of the centres in
+  // its bounds (at most 2x2) is covered, by the reference.
+  const int64_t s = f.subpixelsPerPixel();
+  const bool small = std::max({t[0].x, t[1].x, t[2].x}) - std::min({t[0].x, t[1].x, t[2].x}) < 2 * s &&
+                     std::max({t[0].y, t[1].y, t[2].y}) - std::min({t[0].y, t[1].y, t[2].y}) < 2 * s;
+  bool coversNone = small;
+  if (small)
+    for (const TileIndex& tile : tilesAround(t, f)) {
+      const std::array<CoverageMask, 3> e = ref.edgeMasks(tile.x, tile.y, f);
+      if ((e[0] & e[1] & e[2] & clipMaskOf(bounds, tile.x, tile.y)) != 0) coversNone = false;
+    }
+  if ((outcome == SetupOutcome::NoSamples) != (bounds.empty() || coversNone))
+    return what + ": NoSamples must be reported exactly when no pixel centre is in the box, or "
+                  "when a triangle under two pixels across covers none of those in its bounds";
   if (outcome == SetupOutcome::Accepted && setup.bounds != bounds) {
     std::ostringstream o;
     o << what << ": bounds {" << setup.bounds.x0 << ", " << setup.bounds.y0 << ", "
@@ -279,6 +293,31 @@ TEST(Coverage, ScalarMatchesReferenceOnTinyTriangles) {
     for (auto& p : t) p = point(cx + uniform(rng, -r, r), cy + uniform(rng, -r, r));
     return t;
   });
+}
+
+TEST(Coverage, SmallTrianglesCoveringNoCentreAreDropped) {
+  // Triangles up to two and a half pixels across at random subpixel positions: setup tests the
+  // centres of those under two pixels across and drops the ones that cover none (checkTriangle
+  // holds it to exactly that, and to never dropping a triangle that covers a sample). Both kinds
+  // must occur in numbers, or the test would show nothing.
+  int droppedWithCentresInBounds = 0, smallDrawn = 0;
+  runRandom(0xC0FE0009, 6000, kAreaClip, [&](std::mt19937_64& rng, FixedPointFormat f) {
+    const int64_t s = f.subpixelsPerPixel();
+    const int64_t size = uniform(rng, 1, 5 * s / 4);
+    const int64_t cx = uniform(rng, 0, kAreaPixels * s), cy = uniform(rng, 0, kAreaPixels * s);
+    Tri t;
+    for (auto& p : t) p = point(cx + uniform(rng, -size, size), cy + uniform(rng, -size, size));
+    CoverageSetup setup;
+    const SetupOutcome outcome = setupCoverage(t, kAreaClip, f, setup);
+    if (outcome == SetupOutcome::NoSamples && !expectedBounds(t, kAreaClip, f).empty())
+      ++droppedWithCentresInBounds;
+    if (outcome == SetupOutcome::Accepted && setup.bounds.x1 - setup.bounds.x0 <= 2 &&
+        setup.bounds.y1 - setup.bounds.y0 <= 2)
+      ++smallDrawn;
+    return t;
+  });
+  EXPECT_GT(droppedWithCentresInBounds, 1000);
+  EXPECT_GT(smallDrawn, 1000);
 }
 
 TEST(Coverage, ScalarMatchesReferenceOnSlivers) {
@@ -490,12 +529,17 @@ TEST(Coverage, RandomSharedEdgesCoverTheirSamplesOnce) {
       const Tri ta = uniform(rng, 0, 1) ? Tri{p, q, r1} : Tri{q, p, r1};
       const Tri tb = uniform(rng, 0, 1) ? Tri{p, q, r2} : Tri{r2, q, p};
       CoverageSetup sa, sb;
-      ASSERT_EQ(setupCoverage(ta, clip, f, sa), SetupOutcome::Accepted);
-      ASSERT_EQ(setupCoverage(tb, clip, f, sb), SetupOutcome::Accepted);
+      // A triangle under two pixels across that covers none of its centres is dropped at setup
+      // (NoSamples): it covers nothing here, and the other must cover the edge's samples.
+      const SetupOutcome oa = setupCoverage(ta, clip, f, sa), ob = setupCoverage(tb, clip, f, sb);
+      ASSERT_NE(oa, SetupOutcome::ZeroArea);
+      ASSERT_NE(ob, SetupOutcome::ZeroArea);
       for (int ty = 0; ty < 2; ++ty)
         for (int tx = 0; tx < 2; ++tx) {
-          const CoverageMask a = coverageScalar(sa.edges, sa.bounds, tx, ty, f);
-          const CoverageMask b = coverageScalar(sb.edges, sb.bounds, tx, ty, f);
+          const CoverageMask a = oa == SetupOutcome::Accepted
+                                     ? coverageScalar(sa.edges, sa.bounds, tx, ty, f) : 0;
+          const CoverageMask b = ob == SetupOutcome::Accepted
+                                     ? coverageScalar(sb.edges, sb.bounds, tx, ty, f) : 0;
           ASSERT_EQ(a & b, 0u) << describe(ta, clip, f) << " and " << describe(tb, clip, f);
           for (int bit = 0; bit < 64; ++bit) {
             const int64_t sx = sampleSubpixels(tx * 8 + bit % 8, f),

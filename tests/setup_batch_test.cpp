@@ -41,7 +41,11 @@ std::vector<ShadedVertex<N>> randomTriangles(int count, const ScreenMapping& map
   for (int t = 0; t < count; ++t) {
     const int kind = int(unit(rng) * 10);
     const double cx = unit(rng) * (kWidth + 200) - 100, cy = unit(rng) * (kHeight + 200) - 100;
-    const double size = kind < 4 ? 0.5 + unit(rng) * 20 : kind < 7 ? unit(rng) * 2000 : guard;
+    // kind 0: under two pixels across, which setup tests at the centres in their bounds.
+    const double size = kind == 0  ? 0.1 + unit(rng) * 1.1
+                        : kind < 4 ? 0.5 + unit(rng) * 20
+                        : kind < 7 ? unit(rng) * 2000
+                                   : guard;
     std::array<double, 3> x, y;
     for (int i = 0; i < 3; ++i) {
       x[i] = std::clamp(cx + (unit(rng) - 0.5) * 2 * size, -guard, guard);
