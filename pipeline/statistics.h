@@ -32,8 +32,9 @@ struct PipelineStatistics {
   uint64_t setupCulledBack = 0;
   uint64_t setupCulledFront = 0;
   uint64_t setupZeroArea = 0;   // snapped vertices collinear
-  // The bounding box holds no pixel centre inside viewport and scissor; or, single-sampled, a
-  // triangle under two pixels across covers none of the (at most 2x2) centres its box holds.
+  // The bounding box holds no pixel centre inside viewport and scissor; or, fixed point and
+  // single-sampled, a triangle under two pixels across covers none of the (at most 2x2) centres
+  // its box holds.
   uint64_t setupNoSamples = 0;
   uint64_t setupTriangles = 0;  // passed setup
   // bin
